@@ -1,0 +1,186 @@
+#include "h5util.hpp"
+
+#include <stdexcept>
+
+namespace slender::h5 {
+
+namespace {
+void check(herr_t e, const std::string& what) {
+  if (e < 0) throw std::runtime_error("HDF5 error: " + what);
+}
+Handle checked(hid_t id, herr_t (*closer)(hid_t), const std::string& what) {
+  if (id < 0) throw std::runtime_error("HDF5 error: " + what);
+  return Handle(id, closer);
+}
+}  // namespace
+
+Handle create_file(const std::string& path) {
+  return checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                 "cannot create file '" + path + "'");
+}
+Handle open_file(const std::string& path, bool writable) {
+  H5E_BEGIN_TRY {
+    hid_t f = H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f >= 0) return Handle(f, H5Fclose);
+  }
+  H5E_END_TRY;
+  throw std::runtime_error("cannot open HDF5 file '" + path + "'");
+}
+Handle create_group(hid_t parent, const std::string& name) {
+  return checked(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                 "cannot create group " + name);
+}
+Handle open_group(hid_t parent, const std::string& name) {
+  return checked(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose,
+                 "missing group " + name);
+}
+bool exists(hid_t parent, const std::string& name) {
+  htri_t r;
+  H5E_BEGIN_TRY { r = H5Lexists(parent, name.c_str(), H5P_DEFAULT); }
+  H5E_END_TRY;
+  return r > 0;
+}
+std::vector<std::string> children(hid_t group) {
+  std::vector<std::string> out;
+  H5G_info_t info;
+  check(H5Gget_info(group, &info), "group info");
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
+                                     H5P_DEFAULT);
+    std::string s(static_cast<size_t>(len), '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, s.data(), len + 1, H5P_DEFAULT);
+    out.push_back(s);
+  }
+  return out;
+}
+
+void write_doubles(hid_t parent, const std::string& name, const std::vector<double>& data,
+                   std::vector<hsize_t> dims) {
+  Handle space = checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                         H5Sclose, "dataspace");
+  Handle ds = checked(H5Dcreate2(parent, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT),
+                      H5Dclose, "cannot create dataset " + name);
+  if (!data.empty())
+    check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+          "write " + name);
+}
+
+std::vector<double> read_doubles(hid_t parent, const std::string& name,
+                                 std::vector<hsize_t>* dims_out) {
+  Handle ds = checked(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose,
+                      "missing dataset " + name);
+  Handle space = checked(H5Dget_space(ds), H5Sclose, "dataspace of " + name);
+  int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(static_cast<size_t>(rank));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  size_t n = 1;
+  for (auto d : dims) n *= d;
+  std::vector<double> out(n);
+  if (n) check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+               "read " + name);
+  if (dims_out) *dims_out = dims;
+  return out;
+}
+
+void write_string(hid_t parent, const std::string& name, const std::string& s) {
+  std::vector<double> bytes(s.begin(), s.end());
+  write_doubles(parent, name, bytes, {bytes.size()});
+}
+std::string read_string(hid_t parent, const std::string& name) {
+  auto bytes = read_doubles(parent, name);
+  std::string s;
+  for (double b : bytes) s.push_back(static_cast<char>(b));
+  return s;
+}
+
+void attr_string(hid_t obj, const std::string& name, const std::string& value) {
+  Handle type = checked(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+  H5Tset_size(type, value.size() + 1);
+  H5Tset_strpad(type, H5T_STR_NULLTERM);
+  Handle space = checked(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+  Handle a = checked(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                     H5Aclose, "attribute " + name);
+  check(H5Awrite(a, type, value.c_str()), "write attribute " + name);
+}
+void attr_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  size_t len = 1;
+  for (auto& v : values) len = std::max(len, v.size() + 1);
+  std::vector<char> buf(len * values.size(), '\0');
+  for (size_t i = 0; i < values.size(); ++i) values[i].copy(&buf[i * len], values[i].size());
+  Handle type = checked(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+  H5Tset_size(type, len);
+  hsize_t n = values.size();
+  Handle space = checked(H5Screate_simple(1, &n, nullptr), H5Sclose, "space");
+  Handle a = checked(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                     H5Aclose, "attribute " + name);
+  check(H5Awrite(a, type, buf.data()), "write attribute " + name);
+}
+void attr_ints(hid_t obj, const std::string& name, const std::vector<int>& values) {
+  hsize_t n = values.size();
+  Handle space = checked(H5Screate_simple(1, &n, nullptr), H5Sclose, "space");
+  Handle a = checked(H5Acreate2(obj, name.c_str(), H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT),
+                     H5Aclose, "attribute " + name);
+  check(H5Awrite(a, H5T_NATIVE_INT, values.data()), "write attribute " + name);
+}
+std::string read_attr_string(hid_t obj, const std::string& name) {
+  Handle a = checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "attribute " + name);
+  Handle type = checked(H5Aget_type(a), H5Tclose, "attribute type");
+  size_t len = H5Tget_size(type);
+  std::string s(len, '\0');
+  check(H5Aread(a, type, s.data()), "read attribute " + name);
+  while (!s.empty() && s.back() == '\0') s.pop_back();
+  return s;
+}
+
+TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool integer)
+    : ncomp_(ncomp), integer_(integer) {
+  group_ = create_group(parent, name);
+  auto make = [&](const char* nm, hid_t type, int rank, const hsize_t* chunk) {
+    std::vector<hsize_t> zero(static_cast<size_t>(rank), 0), maxd(static_cast<size_t>(rank), H5S_UNLIMITED);
+    if (rank == 3) maxd[2] = static_cast<hsize_t>(ncomp_);
+    Handle space = checked(H5Screate_simple(rank, zero.data(), maxd.data()), H5Sclose, "space");
+    Handle plist = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "plist");
+    H5Pset_chunk(plist, rank, chunk);
+    return checked(H5Dcreate2(group_, nm, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
+                   std::string("dataset ") + nm);
+  };
+  const hsize_t c1[1] = {64};
+  step_ = make("step", H5T_STD_I64LE, 1, c1);
+  time_ = make("time", H5T_IEEE_F64LE, 1, c1);
+  const hsize_t c3[3] = {1, 1024, static_cast<hsize_t>(ncomp_)};
+  value_ = make("value", integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, 3, c3);
+}
+
+long TimeSeries::append(long step, double time, const double* data, size_t n) {
+  const hsize_t t = static_cast<hsize_t>(frames_);
+  nmax_ = std::max<hsize_t>(nmax_, n);
+  auto write1 = [&](const Handle& ds, hid_t memtype, const void* v) {
+    hsize_t size = t + 1;
+    check(H5Dset_extent(ds, &size), "extend");
+    Handle fs = checked(H5Dget_space(ds), H5Sclose, "space");
+    hsize_t start = t, count = 1;
+    H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+    Handle ms = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, "space");
+    check(H5Dwrite(ds, memtype, ms, fs, H5P_DEFAULT, v), "write frame");
+  };
+  long long s = step;
+  write1(step_, H5T_NATIVE_LLONG, &s);
+  write1(time_, H5T_NATIVE_DOUBLE, &time);
+  hsize_t size[3] = {t + 1, nmax_, static_cast<hsize_t>(ncomp_)};
+  check(H5Dset_extent(value_, size), "extend value");
+  Handle fs = checked(H5Dget_space(value_), H5Sclose, "space");
+  hsize_t start[3] = {t, 0, 0}, count[3] = {1, n, static_cast<hsize_t>(ncomp_)};
+  H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, nullptr, count, nullptr);
+  Handle ms = checked(H5Screate_simple(3, count, nullptr), H5Sclose, "space");
+  if (integer_) {
+    std::vector<long long> buf(n * static_cast<size_t>(ncomp_));
+    for (size_t i = 0; i < buf.size(); ++i) buf[i] = static_cast<long long>(data[i]);
+    check(H5Dwrite(value_, H5T_NATIVE_LLONG, ms, fs, H5P_DEFAULT, buf.data()), "write value");
+  } else {
+    check(H5Dwrite(value_, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, data), "write value");
+  }
+  return frames_++;
+}
+
+}  // namespace slender::h5

@@ -1,0 +1,80 @@
+// Small RAII helpers over the HDF5 C API, shared by checkpoints and dumps.
+#pragma once
+#ifdef SLENDER_HAVE_HDF5
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace slender::h5 {
+
+// Owns one HDF5 identifier and closes it with the right function.
+class Handle {
+ public:
+  Handle() = default;
+  Handle(hid_t id, herr_t (*closer)(hid_t)) : id_(id), close_(closer) {}
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
+  Handle& operator=(Handle&& o) noexcept {
+    reset();
+    id_ = o.id_;
+    close_ = o.close_;
+    o.id_ = -1;
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+  void reset() {
+    if (id_ >= 0 && close_) close_(id_);
+    id_ = -1;
+  }
+  hid_t get() const { return id_; }
+  operator hid_t() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_ = -1;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+Handle create_file(const std::string& path);  // truncates
+Handle open_file(const std::string& path, bool writable);
+Handle create_group(hid_t parent, const std::string& name);
+Handle open_group(hid_t parent, const std::string& name);
+bool exists(hid_t parent, const std::string& name);
+std::vector<std::string> children(hid_t group);
+
+void write_doubles(hid_t parent, const std::string& name, const std::vector<double>& data,
+                   std::vector<hsize_t> dims);
+std::vector<double> read_doubles(hid_t parent, const std::string& name,
+                                 std::vector<hsize_t>* dims = nullptr);
+void write_string(hid_t parent, const std::string& name, const std::string& s);
+std::string read_string(hid_t parent, const std::string& name);
+
+void attr_string(hid_t obj, const std::string& name, const std::string& value);
+void attr_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values);
+void attr_ints(hid_t obj, const std::string& name, const std::vector<int>& values);
+std::string read_attr_string(hid_t obj, const std::string& name);
+
+// A time series following H5MD: <group>/step, <group>/time, <group>/value with
+// value extendable in frames and in the particle dimension.
+class TimeSeries {
+ public:
+  TimeSeries(hid_t parent, const std::string& name, int ncomp, bool integer);
+  // Appends one frame of n rows (ncomp values each); returns the frame index.
+  long append(long step, double time, const double* data, size_t n);
+  long frames() const { return frames_; }
+  hsize_t capacity() const { return nmax_; }
+
+ private:
+  Handle group_, step_, time_, value_;
+  int ncomp_;
+  bool integer_;
+  long frames_ = 0;
+  hsize_t nmax_ = 0;
+};
+
+}  // namespace slender::h5
+#endif

@@ -1,0 +1,732 @@
+#include "lua_binding.hpp"
+
+#include <lua.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "registry.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+namespace {
+
+const char* kSimMeta = "slender.Simulation";
+
+// Per-deck context kept in the Lua state's extra space: no globals.
+struct DeckContext {
+  DeckOptions opt;
+  bool instability = false;
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+};
+DeckContext*& context(lua_State* L) { return *static_cast<DeckContext**>(lua_getextraspace(L)); }
+
+// An error whose message already names the deck line (e.g. from a callback).
+struct LocatedError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct SimBox {
+  Simulation* sim;
+};
+
+Simulation& sim_arg(lua_State* L, int idx = 1) {
+  auto* box = static_cast<SimBox*>(luaL_testudata(L, idx, kSimMeta));
+  if (!box || !box->sim) throw InputError("expected a simulation (use sim:method(...), not sim.method(...))");
+  return *box->sim;
+}
+
+std::string str_arg(lua_State* L, int idx, const char* what) {
+  if (lua_type(L, idx) != LUA_TSTRING) throw InputError(std::string("expected a string for ") + what);
+  return lua_tostring(L, idx);
+}
+double num_arg(lua_State* L, int idx, const char* what) {
+  if (lua_type(L, idx) != LUA_TNUMBER) throw InputError(std::string("expected a number for ") + what);
+  return lua_tonumber(L, idx);
+}
+
+// Lua value -> raw parameter value (numbers, booleans, strings, flat lists).
+Value to_value(lua_State* L, int idx, const std::string& key) {
+  switch (lua_type(L, idx)) {
+    case LUA_TNUMBER: return lua_tonumber(L, idx);
+    case LUA_TBOOLEAN: return static_cast<bool>(lua_toboolean(L, idx));
+    case LUA_TSTRING: return std::string(lua_tostring(L, idx));
+    case LUA_TTABLE: {
+      idx = lua_absindex(L, idx);
+      const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+      std::vector<double> nums;
+      std::vector<std::string> strs;
+      for (lua_Integer i = 1; i <= n; ++i) {
+        lua_rawgeti(L, idx, i);
+        if (lua_type(L, -1) == LUA_TNUMBER) nums.push_back(lua_tonumber(L, -1));
+        else if (lua_type(L, -1) == LUA_TSTRING) strs.push_back(lua_tostring(L, -1));
+        else {
+          lua_pop(L, 1);
+          throw InputError("key '" + key + "': lists may hold only numbers or only strings");
+        }
+        lua_pop(L, 1);
+      }
+      if (!nums.empty() && !strs.empty())
+        throw InputError("key '" + key + "': a list mixes numbers and strings");
+      if (!nums.empty()) return nums;
+      return strs;
+    }
+    default:
+      throw InputError("key '" + key + "' has a " + luaL_typename(L, idx) +
+                       " value, which no style parameter accepts");
+  }
+}
+
+// A Lua table of named parameters -> RawParams. Keys listed in `skip` are left
+// for the caller (e.g. callbacks).
+RawParams to_raw(lua_State* L, int idx, const std::vector<std::string>& skip = {}) {
+  RawParams raw;
+  if (lua_isnoneornil(L, idx)) return raw;
+  if (!lua_istable(L, idx)) throw InputError("expected a table of parameters {key = value, ...}");
+  idx = lua_absindex(L, idx);
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    if (lua_type(L, -2) != LUA_TSTRING) {
+      lua_pop(L, 2);
+      throw InputError("parameter tables take names as keys: {key = value}");
+    }
+    std::string key = lua_tostring(L, -2);
+    bool skipped = false;
+    for (auto& s : skip) skipped = skipped || s == key;
+    if (!skipped) {
+      try {
+        raw[key] = to_value(L, -1, key);
+      } catch (...) {
+        lua_pop(L, 2);
+        throw;
+      }
+    }
+    lua_pop(L, 1);
+  }
+  return raw;
+}
+
+// Node index from the deck: 1-based, negative counts from the end.
+int node_index(long i, size_t n, const std::string& what) {
+  long k = i > 0 ? i - 1 : static_cast<long>(n) + i;
+  if (i == 0 || k < 0 || k >= static_cast<long>(n))
+    throw InputError(what + ": node index " + std::to_string(i) + " out of range 1.." + std::to_string(n) +
+                     " (or -1..-" + std::to_string(n) + ")");
+  return static_cast<int>(k);
+}
+
+// ------------------------------------------------------------ commands
+
+ParamSpec simulation_spec() {
+  ParamSpec s("command", "simulation", "slender.simulation{...}: a new, empty scene");
+  s.integer("dimension", "2 or 3").def(3.0).min(2).max(3);
+  s.integer("seed", "seed of the scene's random stream").def(1.0).min(0);
+  s.boolean("quiet", "no run summaries or thermo on the console").def(false);
+  return s;
+}
+
+ParamSpec wire_spec() {
+  ParamSpec s("command", "wire", "sim:wire{...}: a chain of nodes (straight, circular or from points)");
+  s.string("name", "chain name (also a node group)").required();
+  s.integer("nodes", "number of nodes").min(2);
+  s.real("spacing", "rest length of each edge").def(1.0).positive();
+  s.vector("start", "first node (or circle centre)").def(std::vector<double>{0, 0, 0}).length(2, 3);
+  s.vector("direction", "direction of a straight wire").def(std::vector<double>{1, 0, 0}).length(2, 3);
+  s.real("radius", "place the nodes on a closed circle of this radius in the xy plane").positive();
+  s.boolean("closed", "connect the last node to the first").def(false);
+  s.real("mass", "mass of each node").def(1.0).positive();
+  s.real("perturb", "random displacement amplitude normal to the wire (seeded)").def(0.0).nonnegative();
+  s.vector("points", "explicit node positions {{x,y[,z]}, ...} (instead of nodes/spacing)");
+  return s;
+}
+
+ParamSpec group_spec() {
+  ParamSpec s("command", "group", "sim:group(name, {...}): a named set of nodes");
+  s.string("chain", "take nodes of this chain (indices below count along it)");
+  s.add("nodes", ParamType::IntList, "1-based indices; negative counts from the end");
+  s.string("region", "nodes inside this region (intersected with the above)");
+  return s;
+}
+
+ParamSpec thermo_spec() {
+  ParamSpec s("command", "thermo", "sim:thermo{...}: console and CSV output of chosen columns");
+  s.integer("every", "steps between lines (0: off)").def(0.0).min(0);
+  s.add("columns", ParamType::StringList,
+        "step, time, dt, nodes, ke, pe, etotal, fmax, energy.<category>, <id>.<key>")
+      .def(std::vector<std::string>{"step", "time", "ke", "pe", "etotal"});
+  s.string("file", "CSV file (same columns)");
+  s.boolean("console", "print to the console").def(true);
+  s.real("progress", "seconds between progress/ETA lines").def(5.0).positive();
+  return s;
+}
+
+ParamSpec guard_spec() {
+  ParamSpec s("command", "guard", "sim:guard{...}: the instability guard");
+  s.integer("every", "steps between checks (outputs are always checked)").def(10.0).min(1);
+  s.real("max_step_fraction", "max |v| dt over the shortest rest length").def(0.5).positive();
+  s.real("ke_factor", "max kinetic energy over the largest energy seen").def(100.0).positive();
+  s.string("last_good_file", "where the last good state is written").def(std::string("slender_last_good.h5"));
+  return s;
+}
+
+ParamSpec run_spec() {
+  ParamSpec s("command", "run", "sim:run{...} or sim:run(steps)");
+  s.integer("steps", "number of steps").required().min(0);
+  s.integer("every", "steps between callback calls").def(0.0).min(0);
+  s.add("callback", ParamType::String, "function(sim) called every `every` steps; return true to stop");
+  return s;
+}
+
+ParamSpec minimize_spec() {
+  ParamSpec s("command", "minimize", "sim:minimize{...}: FIRE relaxation to static equilibrium");
+  s.real("ftol", "stop when the largest nodal force is below this").def(1e-8).positive();
+  s.integer("max_steps", "give up after this many steps").def(1e6).min(1);
+  return s;
+}
+
+// ------------------------------------------------------------ methods
+
+int l_simulation(lua_State* L) {
+  auto p = simulation_spec().validate(to_raw(L, 1));
+  auto sim = std::make_unique<Simulation>(static_cast<int>(p.integer("dimension")),
+                                          static_cast<std::uint64_t>(p.integer("seed")));
+  sim->verbose = !(p.boolean("quiet") || context(L)->opt.quiet);
+  auto* box = static_cast<SimBox*>(lua_newuserdatauv(L, sizeof(SimBox), 1));
+  box->sim = sim.release();
+  luaL_setmetatable(L, kSimMeta);
+  return 1;
+}
+
+int l_gc(lua_State* L) {
+  auto* box = static_cast<SimBox*>(luaL_testudata(L, 1, kSimMeta));
+  if (box && box->sim) {
+    delete box->sim;
+    box->sim = nullptr;
+  }
+  return 0;
+}
+
+std::vector<Vec3> read_points(lua_State* L, int tbl) {
+  std::vector<Vec3> pts;
+  lua_getfield(L, tbl, "points");
+  if (lua_istable(L, -1)) {
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+    for (lua_Integer i = 1; i <= n; ++i) {
+      lua_rawgeti(L, -1, i);
+      Vec3 p = Vec3::Zero();
+      bool ok = lua_istable(L, -1);
+      if (ok) {
+        for (int c = 0; c < 3; ++c) {
+          lua_rawgeti(L, -1, c + 1);
+          if (lua_type(L, -1) == LUA_TNUMBER) p[c] = lua_tonumber(L, -1);
+          else if (c < 2) ok = false;
+          lua_pop(L, 1);
+        }
+      }
+      lua_pop(L, 1);
+      if (!ok) {
+        lua_pop(L, 1);
+        throw InputError("wire: points must be a list of {x, y[, z]}");
+      }
+      pts.push_back(p);
+    }
+  }
+  lua_pop(L, 1);
+  return pts;
+}
+
+int l_wire(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  if (!lua_istable(L, 2)) throw InputError("wire: expected a table {name = ..., nodes = ...}");
+  std::vector<Vec3> pts = read_points(L, 2);
+  auto p = wire_spec().validate(to_raw(L, 2, {"points"}));
+  bool closed = p.boolean("closed");
+  if (pts.empty()) {
+    if (!p.has("nodes")) throw InputError("wire: give either nodes = N or points = {...}");
+    const long n = p.integer("nodes");
+    const double h = p.real("spacing");
+    const Vec3 start = p.vec3("start");
+    if (p.has("radius")) {
+      const double R = p.real("radius");
+      for (long i = 0; i < n; ++i) {
+        double a = 2 * M_PI * i / n;
+        pts.push_back(start + R * Vec3(std::cos(a), std::sin(a), 0));
+      }
+      closed = true;
+    } else {
+      Vec3 dir = p.vec3("direction");
+      if (dir.norm() == 0) throw InputError("wire: direction must be non-zero");
+      dir.normalize();
+      for (long i = 0; i < n; ++i) pts.push_back(start + (h * i) * dir);
+    }
+  }
+  const double amp = p.real("perturb");
+  if (amp > 0) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (size_t i = 1; i + 1 < pts.size(); ++i) {
+      Vec3 t = (pts[i + 1] - pts[i - 1]).normalized();
+      Vec3 d(u(sim.rng()), u(sim.rng()), sim.dimension() == 3 ? u(sim.rng()) : 0.0);
+      d -= d.dot(t) * t;
+      pts[i] += amp * d;
+    }
+  }
+  Chain& c = sim.add_chain(p.str("name"), pts, p.real("mass"), closed);
+  lua_pushinteger(L, c.n_nodes());
+  return 1;
+}
+
+int l_group(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  std::string name = str_arg(L, 2, "the group name");
+  auto p = group_spec().validate(to_raw(L, 3));
+  std::vector<int> sel;
+  if (p.has("chain")) {
+    Chain* c = sim.topology().find(p.str("chain"));
+    if (!c) throw InputError("group '" + name + "': unknown chain '" + p.str("chain") + "'");
+    if (p.has("nodes"))
+      for (long i : p.integers("nodes")) sel.push_back(c->nodes[node_index(i, c->nodes.size(), "group " + name)]);
+    else
+      sel = c->nodes;
+  } else if (p.has("nodes")) {
+    for (long i : p.integers("nodes")) sel.push_back(node_index(i, sim.nodes().size(), "group " + name));
+  } else {
+    sel = sim.group("all");
+  }
+  if (p.has("region")) {
+    RegionStyle& r = sim.region(p.str("region"));
+    std::vector<int> in;
+    for (int i : sel)
+      if (r.contains(sim.nodes().x[i])) in.push_back(i);
+    sel = in;
+  }
+  if (sel.empty()) throw InputError("group '" + name + "' would be empty");
+  const auto count = static_cast<lua_Integer>(sel.size());
+  sim.set_group(name, std::move(sel));
+  lua_pushinteger(L, count);
+  return 1;
+}
+
+int l_region(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  sim.add_region(str_arg(L, 2, "the region id"), str_arg(L, 3, "the region style"), to_raw(L, 4));
+  return 0;
+}
+int l_bond(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto& b = sim.add_bond(str_arg(L, 2, "the bond style"), to_raw(L, 3));
+  lua_pushstring(L, b.id().c_str());
+  return 1;
+}
+int l_pair(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto& b = sim.add_pair(str_arg(L, 2, "the pair style"), to_raw(L, 3));
+  lua_pushstring(L, b.id().c_str());
+  return 1;
+}
+int l_fix(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  sim.add_fix(str_arg(L, 2, "the fix id"), str_arg(L, 3, "the fix style"), to_raw(L, 4));
+  return 0;
+}
+int l_unfix(lua_State* L) {
+  sim_arg(L).remove_fix(str_arg(L, 2, "the fix id"));
+  return 0;
+}
+int l_compute(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  sim.add_compute(str_arg(L, 2, "the compute id"), str_arg(L, 3, "the compute style"), to_raw(L, 4));
+  return 0;
+}
+int l_dump(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  sim.add_dump(str_arg(L, 2, "the dump id"), str_arg(L, 3, "the dump style"), to_raw(L, 4));
+  return 0;
+}
+int l_integrator(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  sim.set_integrator(str_arg(L, 2, "the integrator style"), to_raw(L, 3));
+  return 0;
+}
+int l_modify(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  std::string id = str_arg(L, 2, "the style id");
+  Style* s = sim.find_style(id);
+  if (!s) throw InputError("modify: no style with id '" + id + "'");
+  s->modify(to_raw(L, 3));
+  sim.forces_valid = false;
+  return 0;
+}
+int l_thermo(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto p = thermo_spec().validate(to_raw(L, 2));
+  sim.thermo.every = p.integer("every");
+  sim.thermo.columns = p.strings("columns");
+  sim.thermo.file = p.has("file") ? p.str("file") : "";
+  sim.thermo.console = p.boolean("console");
+  sim.thermo.progress_seconds = p.real("progress");
+  for (auto& c : sim.thermo.columns) {
+    // validate names now, so a typo stops the deck at this line
+    auto dot = c.find('.');
+    static const char* builtin[] = {"step", "time", "dt", "nodes", "ke", "pe", "etotal", "fmax"};
+    bool ok = false;
+    for (auto* b : builtin) ok = ok || c == b;
+    if (!ok && dot != std::string::npos) {
+      std::string id = c.substr(0, dot);
+      Style* s = sim.find_style(id);
+      ok = id == "energy" || (s && [&] {
+             for (auto& k : s->value_keys())
+               if (k == c.substr(dot + 1)) return true;
+             return false;
+           }());
+    }
+    if (!ok) throw InputError("thermo: unknown column '" + c + "'");
+  }
+  return 0;
+}
+int l_guard(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto p = guard_spec().validate(to_raw(L, 2));
+  sim.guard.every = p.integer("every");
+  sim.guard.max_step_fraction = p.real("max_step_fraction");
+  sim.guard.ke_factor = p.real("ke_factor");
+  sim.guard.last_good_file = p.str("last_good_file");
+  return 0;
+}
+
+int l_run(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  RunOptions opt;
+  int cb_ref = LUA_NOREF;
+  if (lua_type(L, 2) == LUA_TNUMBER) {
+    double s = lua_tonumber(L, 2);
+    if (s < 0 || s != std::floor(s)) throw InputError("run: steps must be a non-negative integer");
+    opt.steps = static_cast<long>(s);
+  } else {
+    auto p = run_spec().validate(to_raw(L, 2, {"callback"}));
+    opt.steps = p.integer("steps");
+    opt.every = p.integer("every");
+    lua_getfield(L, 2, "callback");
+    if (lua_isfunction(L, -1)) {
+      cb_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+      if (opt.every <= 0) opt.every = 1;
+    } else {
+      bool bad = !lua_isnil(L, -1);
+      lua_pop(L, 1);
+      if (bad) throw InputError("run: callback must be a function");
+    }
+  }
+  if (cb_ref != LUA_NOREF) {
+    opt.callback = [L, cb_ref](Simulation&) {
+      lua_rawgeti(L, LUA_REGISTRYINDEX, cb_ref);
+      lua_pushvalue(L, 1);  // the simulation userdata
+      if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
+        std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in callback";
+        lua_pop(L, 1);
+        throw LocatedError(msg);
+      }
+      bool stop = lua_toboolean(L, -1);
+      lua_pop(L, 1);
+      return stop;
+    };
+  }
+  struct Unref {
+    lua_State* L;
+    int ref;
+    ~Unref() { luaL_unref(L, LUA_REGISTRYINDEX, ref); }
+  } unref{L, cb_ref};
+  sim.run(opt);
+  lua_pushinteger(L, sim.step);
+  return 1;
+}
+
+int l_minimize(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto p = minimize_spec().validate(to_raw(L, 2));
+  long n = sim.minimize(p.real("ftol"), p.integer("max_steps"));
+  lua_pushinteger(L, n);
+  lua_pushboolean(L, sim.max_force() < p.real("ftol"));
+  return 2;
+}
+
+int l_value(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  lua_pushnumber(L, sim.column(str_arg(L, 2, "the column name")));
+  return 1;
+}
+
+int push_vec(lua_State* L, const Vec3& v, int dim) {
+  for (int c = 0; c < dim; ++c) lua_pushnumber(L, v[c]);
+  return dim;
+}
+int l_position(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "position");
+  return push_vec(L, sim.nodes().x[i], sim.dimension());
+}
+int l_velocity(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "velocity");
+  return push_vec(L, sim.nodes().v[i], sim.dimension());
+}
+int l_force(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "force");
+  return push_vec(L, sim.nodes().f[i], sim.dimension());
+}
+int l_set_position(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "set_position");
+  Value v = to_value(L, 3, "position");
+  auto* d = std::get_if<std::vector<double>>(&v);
+  if (!d || d->size() < 2 || d->size() > 3) throw InputError("set_position: expected {x, y[, z]}");
+  for (size_t c = 0; c < d->size(); ++c) sim.nodes().x[i][static_cast<long>(c)] = (*d)[c];
+  if (sim.dimension() == 2) sim.nodes().x[i].z() = 0;
+  sim.forces_valid = false;
+  ++sim.state_epoch;
+  return 0;
+}
+int l_chain_node(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  std::string name = str_arg(L, 2, "the chain name");
+  Chain* c = sim.topology().find(name);
+  if (!c) throw InputError("unknown chain '" + name + "'");
+  int k = node_index(static_cast<long>(num_arg(L, 3, "the index along the chain")), c->nodes.size(), name);
+  lua_pushinteger(L, c->nodes[k] + 1);
+  return 1;
+}
+int l_nnodes(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(sim_arg(L).nodes().n_owned()));
+  return 1;
+}
+int l_step(lua_State* L) {
+  lua_pushinteger(L, sim_arg(L).step);
+  return 1;
+}
+int l_time(lua_State* L) {
+  lua_pushnumber(L, sim_arg(L).time);
+  return 1;
+}
+int l_dt(lua_State* L) {
+  lua_pushnumber(L, sim_arg(L).dt);
+  return 1;
+}
+int l_suggest_dt(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  double safety = lua_isnoneornil(L, 2) ? 1.0 : num_arg(L, 2, "the safety factor");
+  lua_pushnumber(L, sim.suggest_dt(safety));
+  return 1;
+}
+int l_properties(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto names = sim.nodes().property_names();
+  lua_createtable(L, static_cast<int>(names.size()), 0);
+  for (size_t i = 0; i < names.size(); ++i) {
+    lua_pushstring(L, names[i].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+int l_write_checkpoint(lua_State* L) {
+  sim_arg(L).write_checkpoint(str_arg(L, 2, "the checkpoint file"));
+  return 0;
+}
+int l_read_checkpoint(lua_State* L) {
+  sim_arg(L).read_checkpoint(str_arg(L, 2, "the checkpoint file"));
+  return 0;
+}
+
+int l_var(lua_State* L) {
+  std::string name = str_arg(L, 1, "the variable name");
+  auto& vars = context(L)->opt.vars;
+  auto it = vars.find(name);
+  if (it == vars.end()) {
+    lua_settop(L, 2);
+    return 1;  // the default (nil if none)
+  }
+  // numbers arrive as numbers; "true"/"false" as booleans; the rest as strings
+  if (lua_stringtonumber(L, it->second.c_str()) == 0) {
+    if (it->second == "true" || it->second == "false") lua_pushboolean(L, it->second == "true");
+    else lua_pushstring(L, it->second.c_str());
+  }
+  return 1;
+}
+int l_clock(lua_State* L) {
+  auto dt = std::chrono::steady_clock::now() - context(L)->t0;
+  lua_pushnumber(L, std::chrono::duration<double>(dt).count());
+  return 1;
+}
+// slender.result{key = value, ...}: one machine-readable line for sweep scripts.
+int l_result(lua_State* L) {
+  if (!lua_istable(L, 1)) throw InputError("result: expected a table {key = value}");
+  std::map<std::string, std::string> kv;
+  lua_pushnil(L);
+  while (lua_next(L, 1)) {
+    if (lua_type(L, -2) == LUA_TSTRING) {
+      std::string v;
+      if (lua_type(L, -1) == LUA_TNUMBER) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.10g", lua_tonumber(L, -1));
+        v = buf;
+      } else {
+        v = luaL_tolstring(L, -1, nullptr);
+        lua_pop(L, 1);
+      }
+      kv[lua_tostring(L, -2)] = v;
+    }
+    lua_pop(L, 1);
+  }
+  std::string line = "RESULT";
+  for (auto& [k, v] : kv) line += " " + k + "=" + v;
+  std::printf("%s\n", line.c_str());
+  std::fflush(stdout);
+  return 0;
+}
+int l_styles(lua_State* L) {
+  std::string fam = lua_isnoneornil(L, 1) ? "" : str_arg(L, 1, "the family");
+  lua_newtable(L);
+  lua_Integer k = 0;
+  for (auto& e : Catalog::entries()) {
+    if (!fam.empty() && e.family != fam) continue;
+    lua_pushstring(L, (e.family + "/" + e.name).c_str());
+    lua_rawseti(L, -2, ++k);
+  }
+  return 1;
+}
+
+// Runs F; C++ exceptions become Lua errors that name the deck line. The Lua
+// error is raised only after every C++ object of F is destroyed.
+template <int (*F)(lua_State*)>
+int guarded(lua_State* L) {
+  bool failed = false;
+  try {
+    return F(L);
+  } catch (const LocatedError& e) {
+    lua_pushstring(L, e.what());
+    failed = true;
+  } catch (const InstabilityError& e) {
+    context(L)->instability = true;
+    luaL_where(L, 1);
+    lua_pushstring(L, e.what());
+    lua_concat(L, 2);
+    failed = true;
+  } catch (const std::exception& e) {
+    luaL_where(L, 1);
+    lua_pushstring(L, e.what());
+    lua_concat(L, 2);
+    failed = true;
+  }
+  if (failed) return lua_error(L);
+  return 0;
+}
+
+#define SLENDER_METHOD(name, fn) {name, guarded<fn>}
+
+const luaL_Reg kSimMethods[] = {
+    SLENDER_METHOD("wire", l_wire),
+    SLENDER_METHOD("group", l_group),
+    SLENDER_METHOD("region", l_region),
+    SLENDER_METHOD("bond", l_bond),
+    SLENDER_METHOD("pair", l_pair),
+    SLENDER_METHOD("fix", l_fix),
+    SLENDER_METHOD("unfix", l_unfix),
+    SLENDER_METHOD("compute", l_compute),
+    SLENDER_METHOD("dump", l_dump),
+    SLENDER_METHOD("integrator", l_integrator),
+    SLENDER_METHOD("modify", l_modify),
+    SLENDER_METHOD("thermo", l_thermo),
+    SLENDER_METHOD("guard", l_guard),
+    SLENDER_METHOD("run", l_run),
+    SLENDER_METHOD("minimize", l_minimize),
+    SLENDER_METHOD("value", l_value),
+    SLENDER_METHOD("position", l_position),
+    SLENDER_METHOD("velocity", l_velocity),
+    SLENDER_METHOD("force", l_force),
+    SLENDER_METHOD("set_position", l_set_position),
+    SLENDER_METHOD("chain_node", l_chain_node),
+    SLENDER_METHOD("nnodes", l_nnodes),
+    SLENDER_METHOD("step", l_step),
+    SLENDER_METHOD("time", l_time),
+    SLENDER_METHOD("dt", l_dt),
+    SLENDER_METHOD("suggest_dt", l_suggest_dt),
+    SLENDER_METHOD("properties", l_properties),
+    SLENDER_METHOD("write_checkpoint", l_write_checkpoint),
+    SLENDER_METHOD("read_checkpoint", l_read_checkpoint),
+    {nullptr, nullptr}};
+
+const luaL_Reg kModule[] = {
+    SLENDER_METHOD("simulation", l_simulation),
+    SLENDER_METHOD("var", l_var),
+    SLENDER_METHOD("clock", l_clock),
+    SLENDER_METHOD("result", l_result),
+    SLENDER_METHOD("styles", l_styles),
+    {nullptr, nullptr}};
+
+int open_module(lua_State* L) {
+  luaL_newlib(L, kModule);
+  lua_pushstring(L, "0.1.0");
+  lua_setfield(L, -2, "version");
+  return 1;
+}
+
+int traceback_free_handler(lua_State* L) {
+  // keep the message as is: it already names the deck file and line
+  if (!lua_isstring(L, 1)) lua_pushstring(L, "(error object is not a string)");
+  return 1;
+}
+
+}  // namespace
+
+void open_slender(lua_State* L, const DeckOptions& opt) {
+  auto* ctx = new DeckContext{opt};
+  context(L) = ctx;
+  if (luaL_newmetatable(L, kSimMeta)) {
+    lua_newtable(L);
+    luaL_setfuncs(L, kSimMethods, 0);
+    lua_setfield(L, -2, "__index");
+    lua_pushcfunction(L, l_gc);
+    lua_setfield(L, -2, "__gc");
+    lua_pushcfunction(L, l_gc);
+    lua_setfield(L, -2, "__close");
+  }
+  lua_pop(L, 1);
+  luaL_requiref(L, "slender", open_module, 1);
+  lua_pop(L, 1);
+}
+
+int run_deck(const DeckOptions& opt) {
+  lua_State* L = luaL_newstate();
+  luaL_openlibs(L);
+  open_slender(L, opt);
+  // decks can require modules that sit next to them
+  std::string dir = ".";
+  auto slash = opt.path.find_last_of('/');
+  if (slash != std::string::npos) dir = opt.path.substr(0, slash);
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "path");
+  std::string path = dir + "/?.lua;" + dir + "/?/init.lua;" + lua_tostring(L, -1);
+  lua_pop(L, 1);
+  lua_pushstring(L, path.c_str());
+  lua_setfield(L, -2, "path");
+  lua_pop(L, 1);
+
+  int code = 0;
+  lua_pushcfunction(L, traceback_free_handler);
+  if (luaL_loadfile(L, opt.path.c_str()) != LUA_OK) {
+    std::fprintf(stderr, "slender: error: %s\n", lua_tostring(L, -1));
+    code = 1;
+  } else if (lua_pcall(L, 0, 0, -2) != LUA_OK) {
+    std::fprintf(stderr, "slender: error: %s\n", lua_tostring(L, -1));
+    code = context(L)->instability ? 3 : 1;
+  }
+  std::fflush(stdout);
+  DeckContext* ctx = context(L);
+  lua_close(L);  // collects simulations: outputs are flushed and closed
+  delete ctx;
+  return code;
+}
+
+}  // namespace slender

@@ -1,0 +1,25 @@
+// The Lua 5.4 deck interface: module `slender`, Simulation userdata and the
+// deck runner used by the `slender` program.
+#pragma once
+
+#include <map>
+#include <string>
+
+struct lua_State;
+
+namespace slender {
+
+struct DeckOptions {
+  std::string path;
+  std::map<std::string, std::string> vars;  // -v name=value overrides
+  bool quiet = false;
+};
+
+// Registers the `slender` module (global and for require) in a Lua state.
+void open_slender(lua_State* L, const DeckOptions& opt);
+
+// Runs a deck; prints one error line on failure. Exit codes: 0 ok, 1 deck or
+// input error, 3 instability.
+int run_deck(const DeckOptions& opt);
+
+}  // namespace slender

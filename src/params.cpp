@@ -1,0 +1,242 @@
+#include "params.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace slender {
+
+const char* type_name(ParamType t) {
+  switch (t) {
+    case ParamType::Real: return "number";
+    case ParamType::Int: return "integer";
+    case ParamType::Bool: return "boolean";
+    case ParamType::String: return "string";
+    case ParamType::Vector: return "vector of numbers";
+    case ParamType::RealOrAuto: return "number or \"auto\"";
+    case ParamType::StringList: return "list of strings";
+    case ParamType::IntList: return "list of integers";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+const char* value_kind(const Value& v) {
+  switch (v.index()) {
+    case 0: return "nil";
+    case 1: return "number";
+    case 2: return "boolean";
+    case 3: return "string";
+    case 4: return "list of numbers";
+    case 5: return "list of strings";
+  }
+  return "?";
+}
+
+std::string value_text(const Value& v) {
+  if (auto d = std::get_if<double>(&v)) return fmt(*d);
+  if (auto b = std::get_if<bool>(&v)) return *b ? "true" : "false";
+  if (auto s = std::get_if<std::string>(&v)) return "\"" + *s + "\"";
+  if (auto vv = std::get_if<std::vector<double>>(&v)) {
+    std::string out = "{";
+    for (size_t i = 0; i < vv->size(); ++i) out += (i ? ", " : "") + fmt((*vv)[i]);
+    return out + "}";
+  }
+  if (auto vs = std::get_if<std::vector<std::string>>(&v)) {
+    std::string out = "{";
+    for (size_t i = 0; i < vs->size(); ++i) out += (i ? ", \"" : "\"") + (*vs)[i] + "\"";
+    return out + "}";
+  }
+  return "nil";
+}
+
+}  // namespace
+
+std::string ParamDecl::range_text() const {
+  std::string r;
+  if (std::isfinite(lo) || std::isfinite(hi)) {
+    r += lo_open ? "(" : "[";
+    r += std::isfinite(lo) ? fmt(lo) : "-inf";
+    r += ", ";
+    r += std::isfinite(hi) ? fmt(hi) : "inf";
+    r += hi_open ? ")" : "]";
+  }
+  if (!allowed.empty()) {
+    r += "one of";
+    for (auto& a : allowed) r += " \"" + a + "\"";
+  }
+  return r;
+}
+
+ParamDecl& ParamSpec::add(const std::string& key, ParamType t, const std::string& help) {
+  decls.push_back(ParamDecl{});
+  decls.back().name = key;
+  decls.back().type = t;
+  decls.back().help = help;
+  return decls.back();
+}
+
+const ParamDecl* ParamSpec::find(const std::string& key) const {
+  for (auto& d : decls)
+    if (d.name == key) return &d;
+  return nullptr;
+}
+
+ParamValues ParamSpec::validate(const RawParams& raw) const {
+  const std::string who = family + " style '" + name + "'";
+  for (auto& [key, v] : raw) {
+    if (!find(key)) {
+      std::string known;
+      for (auto& d : decls) known += (known.empty() ? "" : ", ") + d.name;
+      throw InputError(who + ": unknown key '" + key + "' (known keys: " +
+                       (known.empty() ? "none" : known) + ")");
+    }
+  }
+  std::map<std::string, Value> out;
+  for (auto& d : decls) {
+    auto it = raw.find(d.name);
+    if (it == raw.end() || std::holds_alternative<std::monostate>(it->second)) {
+      if (d.is_required) throw InputError(who + ": missing required key '" + d.name + "' (" + d.help + ")");
+      if (!std::holds_alternative<std::monostate>(d.default_value)) out[d.name] = d.default_value;
+      continue;
+    }
+    Value v = it->second;
+    auto mistyped = [&]() {
+      return InputError(who + ": key '" + d.name + "' expects a " + type_name(d.type) + ", got " +
+                        value_kind(v) + " " + value_text(v));
+    };
+    auto check_range = [&](double x) {
+      bool bad = !std::isfinite(x) || x < d.lo || x > d.hi || (d.lo_open && x == d.lo) ||
+                 (d.hi_open && x == d.hi);
+      if (bad)
+        throw InputError(who + ": key '" + d.name + "' = " + fmt(x) + " is out of range " +
+                         d.range_text());
+    };
+    switch (d.type) {
+      case ParamType::Real:
+        if (!std::holds_alternative<double>(v)) throw mistyped();
+        check_range(std::get<double>(v));
+        break;
+      case ParamType::Int: {
+        if (!std::holds_alternative<double>(v)) throw mistyped();
+        double x = std::get<double>(v);
+        if (x != std::floor(x)) throw mistyped();
+        check_range(x);
+        break;
+      }
+      case ParamType::Bool:
+        if (!std::holds_alternative<bool>(v)) throw mistyped();
+        break;
+      case ParamType::String: {
+        if (!std::holds_alternative<std::string>(v)) throw mistyped();
+        auto& s = std::get<std::string>(v);
+        if (!d.allowed.empty()) {
+          bool ok = false;
+          for (auto& a : d.allowed) ok = ok || a == s;
+          if (!ok)
+            throw InputError(who + ": key '" + d.name + "' = \"" + s + "\" is not " +
+                             d.range_text());
+        }
+        break;
+      }
+      case ParamType::RealOrAuto:
+        if (auto s = std::get_if<std::string>(&v)) {
+          if (*s != "auto") throw mistyped();
+        } else if (std::holds_alternative<double>(v)) {
+          check_range(std::get<double>(v));
+        } else {
+          throw mistyped();
+        }
+        break;
+      case ParamType::Vector:
+      case ParamType::IntList: {
+        if (std::holds_alternative<double>(v)) v = std::vector<double>{std::get<double>(v)};
+        if (!std::holds_alternative<std::vector<double>>(v)) {
+          // an empty Lua table arrives as an empty string list
+          auto* vs = std::get_if<std::vector<std::string>>(&v);
+          if (vs && vs->empty()) v = std::vector<double>{};
+          else throw mistyped();
+        }
+        auto& vv = std::get<std::vector<double>>(v);
+        if (static_cast<int>(vv.size()) < d.min_len || static_cast<int>(vv.size()) > d.max_len)
+          throw InputError(who + ": key '" + d.name + "' needs " + std::to_string(d.min_len) +
+                           (d.max_len != d.min_len ? " to " + std::to_string(d.max_len) : "") +
+                           " values, got " + std::to_string(vv.size()));
+        for (double x : vv) {
+          if (d.type == ParamType::IntList && x != std::floor(x)) throw mistyped();
+          check_range(x);
+        }
+        break;
+      }
+      case ParamType::StringList:
+        if (std::holds_alternative<std::string>(v))
+          v = std::vector<std::string>{std::get<std::string>(v)};
+        if (auto* vd = std::get_if<std::vector<double>>(&v); vd && vd->empty())
+          v = std::vector<std::string>{};
+        if (!std::holds_alternative<std::vector<std::string>>(v)) throw mistyped();
+        break;
+    }
+    out[d.name] = v;
+  }
+  return ParamValues(who, std::move(out));
+}
+
+std::string ParamSpec::help_text() const {
+  std::ostringstream os;
+  os << family << " style \"" << name << "\": " << summary << "\n";
+  if (decls.empty()) os << "  (no parameters)\n";
+  for (auto& d : decls) {
+    os << "  " << d.name << " (" << type_name(d.type) << ", ";
+    if (d.is_required) os << "required";
+    else if (std::holds_alternative<std::monostate>(d.default_value)) os << "optional";
+    else os << "default " << value_text(d.default_value);
+    auto r = d.range_text();
+    if (!r.empty()) os << ", " << r;
+    os << "): " << d.help << "\n";
+  }
+  return os.str();
+}
+
+const Value& ParamValues::get(const std::string& key) const {
+  auto it = values_.find(key);
+  if (it == values_.end()) throw InputError(owner_ + ": key '" + key + "' has no value");
+  return it->second;
+}
+bool ParamValues::has(const std::string& key) const { return values_.count(key) > 0; }
+double ParamValues::real(const std::string& key) const { return std::get<double>(get(key)); }
+long ParamValues::integer(const std::string& key) const {
+  return static_cast<long>(std::get<double>(get(key)));
+}
+bool ParamValues::boolean(const std::string& key) const { return std::get<bool>(get(key)); }
+const std::string& ParamValues::str(const std::string& key) const {
+  return std::get<std::string>(get(key));
+}
+const std::vector<double>& ParamValues::vec(const std::string& key) const {
+  return std::get<std::vector<double>>(get(key));
+}
+Eigen::Vector3d ParamValues::vec3(const std::string& key) const {
+  auto& v = vec(key);
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < v.size() && i < 3; ++i) out[i] = v[i];
+  return out;
+}
+const std::vector<std::string>& ParamValues::strings(const std::string& key) const {
+  return std::get<std::vector<std::string>>(get(key));
+}
+std::vector<long> ParamValues::integers(const std::string& key) const {
+  std::vector<long> out;
+  for (double x : vec(key)) out.push_back(static_cast<long>(x));
+  return out;
+}
+bool ParamValues::is_auto(const std::string& key) const {
+  auto& v = get(key);
+  return std::holds_alternative<std::string>(v);
+}
+
+}  // namespace slender

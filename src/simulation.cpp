@@ -1,0 +1,547 @@
+#include "simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "registry.hpp"
+
+namespace slender {
+
+double Style::value(const std::string& key) const {
+  throw InputError("'" + id() + "' (" + style_name() + ") has no value '" + key + "'");
+}
+void Style::modify(const RawParams&) {
+  throw InputError("'" + id() + "' (" + style_name() + ") cannot be modified between runs");
+}
+
+Simulation::Simulation(int dimension, std::uint64_t seed)
+    : dim_(dimension), seed_(seed), rng_(seed) {
+  if (dimension != 2 && dimension != 3)
+    throw InputError("dimension must be 2 or 3, got " + std::to_string(dimension));
+}
+Simulation::~Simulation() = default;
+
+Chain& Simulation::add_chain(const std::string& name, const std::vector<Vec3>& pos,
+                             double mass_per_node, bool closed) {
+  if (topo_.find(name)) throw InputError("a chain named '" + name + "' already exists");
+  if (pos.size() < 2) throw InputError("chain '" + name + "' needs at least 2 nodes");
+  if (closed && pos.size() < 3) throw InputError("closed chain '" + name + "' needs 3 nodes");
+  Chain c;
+  c.name = name;
+  c.closed = closed;
+  for (auto& p : pos) {
+    Vec3 q = p;
+    if (dim_ == 2) q.z() = 0.0;
+    c.nodes.push_back(static_cast<int>(nodes_.add(q, mass_per_node)));
+  }
+  const int ne = closed ? c.n_nodes() : c.n_nodes() - 1;
+  for (int e = 0; e < ne; ++e) {
+    double l = (nodes_.x[c.edge_head(e)] - nodes_.x[c.edge_tail(e)]).norm();
+    if (!(l > 0)) throw InputError("chain '" + name + "' has two coincident nodes");
+    c.rest_length.push_back(l);
+  }
+  topo_.chains.push_back(std::move(c));
+  groups_[name] = topo_.chains.back().nodes;
+  return topo_.chains.back();
+}
+
+RegionStyle& Simulation::add_region(const std::string& id, const std::string& style,
+                                    const RawParams& p) {
+  if (regions_.count(id)) throw InputError("a region named '" + id + "' already exists");
+  auto r = Registry<RegionStyle>::create(style, *this, p);
+  r->set_id(id);
+  auto& ref = *r;
+  regions_[id] = std::move(r);
+  return ref;
+}
+
+RegionStyle& Simulation::region(const std::string& id) {
+  auto it = regions_.find(id);
+  if (it == regions_.end()) throw InputError("unknown region '" + id + "'");
+  return *it->second;
+}
+
+void Simulation::set_group(const std::string& name, std::vector<int> idx) {
+  for (int i : idx)
+    if (i < 0 || static_cast<size_t>(i) >= nodes_.size())
+      throw InputError("group '" + name + "': node index out of range");
+  groups_[name] = std::move(idx);
+}
+
+std::vector<int> Simulation::group(const std::string& name) const {
+  if (name == "all") {
+    std::vector<int> all(nodes_.n_owned());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    return all;
+  }
+  auto it = groups_.find(name);
+  if (it == groups_.end()) throw InputError("unknown group '" + name + "'");
+  return it->second;
+}
+bool Simulation::has_group(const std::string& name) const {
+  return name == "all" || groups_.count(name) > 0;
+}
+
+namespace {
+template <class T>
+std::string unique_id(const std::vector<std::unique_ptr<T>>& list, const std::string& base) {
+  std::string id = base;
+  int n = 1;
+  auto taken = [&](const std::string& s) {
+    for (auto& x : list)
+      if (x->id() == s) return true;
+    return false;
+  };
+  while (taken(id)) id = base + "#" + std::to_string(++n);
+  return id;
+}
+}  // namespace
+
+BondStyle& Simulation::add_bond(const std::string& style, const RawParams& p) {
+  auto b = Registry<BondStyle>::create(style, *this, p);
+  b->set_id(unique_id(bonds_, style));
+  bonds_.push_back(std::move(b));
+  forces_valid = false;
+  return *bonds_.back();
+}
+PairStyle& Simulation::add_pair(const std::string& style, const RawParams& p) {
+  auto b = Registry<PairStyle>::create(style, *this, p);
+  b->set_id(unique_id(pairs_, style));
+  pairs_.push_back(std::move(b));
+  forces_valid = false;
+  return *pairs_.back();
+}
+Style* Simulation::find_style(const std::string& id) {
+  for (auto& f : fixes_)
+    if (f->id() == id) return f.get();
+  for (auto& c : computes_)
+    if (c->id() == id) return c.get();
+  for (auto& b : bonds_)
+    if (b->id() == id) return b.get();
+  for (auto& b : pairs_)
+    if (b->id() == id) return b.get();
+  for (auto& d : dumps_)
+    if (d->id() == id) return d.get();
+  return nullptr;
+}
+FixStyle& Simulation::add_fix(const std::string& id, const std::string& style,
+                              const RawParams& p) {
+  if (find_style(id)) throw InputError("the id '" + id + "' is already used");
+  auto f = Registry<FixStyle>::create(style, *this, p);
+  f->set_id(id);
+  fixes_.push_back(std::move(f));
+  forces_valid = false;
+  return *fixes_.back();
+}
+void Simulation::remove_fix(const std::string& id) {
+  for (auto it = fixes_.begin(); it != fixes_.end(); ++it)
+    if ((*it)->id() == id) {
+      fixes_.erase(it);
+      forces_valid = false;
+      return;
+    }
+  throw InputError("unknown fix '" + id + "'");
+}
+FixStyle& Simulation::fix(const std::string& id) {
+  for (auto& f : fixes_)
+    if (f->id() == id) return *f;
+  throw InputError("unknown fix '" + id + "'");
+}
+ComputeStyle& Simulation::add_compute(const std::string& id, const std::string& style,
+                                      const RawParams& p) {
+  if (find_style(id)) throw InputError("the id '" + id + "' is already used");
+  auto c = Registry<ComputeStyle>::create(style, *this, p);
+  c->set_id(id);
+  computes_.push_back(std::move(c));
+  return *computes_.back();
+}
+ComputeStyle& Simulation::compute(const std::string& id) {
+  for (auto& c : computes_)
+    if (c->id() == id) return *c;
+  throw InputError("unknown compute '" + id + "'");
+}
+DumpStyle& Simulation::add_dump(const std::string& id, const std::string& style,
+                                const RawParams& p) {
+  if (find_style(id)) throw InputError("the id '" + id + "' is already used");
+  auto d = Registry<DumpStyle>::create(style, *this, p);
+  d->set_id(id);
+  dumps_.push_back(std::move(d));
+  return *dumps_.back();
+}
+IntegratorStyle& Simulation::set_integrator(const std::string& style, const RawParams& p) {
+  integrator_ = Registry<IntegratorStyle>::create(style, *this, p);
+  integrator_->set_id("integrator");
+  return *integrator_;
+}
+
+// ---------------------------------------------------------------- forces
+
+void Simulation::compute_forces() {
+  for (auto& f : nodes_.f) f.setZero();
+  for (auto& [k, e] : energy_) e = 0.0;
+  for (auto& b : bonds_) energy_[b->energy_category()] += b->compute(*this);
+  for (auto& p : pairs_) energy_["contact"] += p->compute(*this);
+  double ext = 0.0;
+  for (auto* f : fix_post_force_) ext += f->post_force(*this);
+  energy_["external"] += ext;
+  if (dof_mask_) {
+    auto& m = dof_mask_->values();
+    for (size_t i = 0; i < m.size(); ++i)
+      if (m[i])
+        for (int c = 0; c < 3; ++c)
+          if (m[i] & (1 << c)) nodes_.f[i][c] = 0.0;
+  }
+  if (dim_ == 2)
+    for (auto& f : nodes_.f) f.z() = 0.0;
+  forces_valid = true;
+}
+
+void Simulation::end_of_step() {
+  for (auto* f : fix_end_of_step_) f->end_of_step(*this);
+}
+
+double Simulation::kinetic_energy() const {
+  double ke = 0.0;
+  for (size_t i = 0; i < nodes_.n_owned(); ++i) ke += 0.5 * nodes_.mass[i] * nodes_.v[i].squaredNorm();
+  return ke;
+}
+double Simulation::potential_energy() const {
+  double pe = 0.0;
+  for (auto& [k, e] : energy_) pe += e;
+  return pe;
+}
+double Simulation::max_force() const {
+  double m = 0.0;
+  for (size_t i = 0; i < nodes_.n_owned(); ++i) m = std::max(m, nodes_.f[i].norm());
+  return m;
+}
+
+double Simulation::omega_max(std::string* who) const {
+  // Independent stiff terms add in omega^2 (Gershgorin-style upper bound).
+  double w2 = 0.0, best = 0.0;
+  auto take = [&](double w, const std::string& name) {
+    w2 += w * w;
+    if (w > best) {
+      best = w;
+      if (who) *who = name;
+    }
+  };
+  for (auto& b : bonds_) take(b->max_frequency(*this), "bond " + b->id());
+  for (auto& p : pairs_) take(p->max_frequency(*this), "pair " + p->id());
+  for (auto& f : fixes_) take(f->max_frequency(*this), "fix " + f->id());
+  return std::sqrt(w2);
+}
+double Simulation::stability_limit() const {
+  return integrator_ ? integrator_->stability_limit() : 2.0;
+}
+double Simulation::suggest_dt(double safety) const {
+  double w = omega_max();
+  if (!(w > 0)) return 0.0;
+  return safety * stability_limit() / w;
+}
+
+double Simulation::column(const std::string& name) {
+  if (name == "step") return static_cast<double>(step);
+  if (name == "time") return time;
+  if (name == "dt") return dt;
+  if (name == "nodes") return static_cast<double>(nodes_.n_owned());
+  if (name == "ke") return kinetic_energy();
+  if (name == "pe") return potential_energy();
+  if (name == "etotal") return kinetic_energy() + potential_energy();
+  if (name == "fmax") return max_force();
+  auto dot = name.find('.');
+  if (dot == std::string::npos)
+    throw InputError("unknown thermo column '" + name +
+                     "' (built in: step, time, dt, nodes, ke, pe, etotal, fmax; or <id>.<key>)");
+  std::string id = name.substr(0, dot), key = name.substr(dot + 1);
+  if (id == "energy" && !find_style("energy")) {
+    // energies by category are always available
+    if (key == "kinetic") return kinetic_energy();
+    if (key == "potential") return potential_energy();
+    if (key == "total") return kinetic_energy() + potential_energy();
+    auto it = energy_.find(key);
+    return it == energy_.end() ? 0.0 : it->second;
+  }
+  Style* s = find_style(id);
+  if (!s) throw InputError("thermo column '" + name + "': no fix, compute or style with id '" + id + "'");
+  if (auto* c = dynamic_cast<ComputeStyle*>(s)) c->evaluate(*this);
+  return s->value(key);
+}
+
+// ---------------------------------------------------------------- running
+
+void Simulation::resolve_dt() {
+  if (!integrator_) throw InputError("no integrator: call sim:integrator(...) before run");
+  double req = integrator_->requested_dt();
+  if (req > 0) {
+    dt = req;
+    return;
+  }
+  double s = suggest_dt(integrator_->safety());
+  if (!(s > 0))
+    throw InputError("dt = \"auto\" needs at least one bond, pair or fix that reports a stiffness");
+  dt = s;
+}
+
+void Simulation::setup_run() {
+  if (nodes_.size() == 0) throw InputError("the scene has no nodes");
+  resolve_dt();
+  fix_post_force_.clear();
+  fix_end_of_step_.clear();
+  for (auto& f : fixes_) {
+    if (f->stages() & kPostForce) fix_post_force_.push_back(f.get());
+    if (f->stages() & kEndOfStep) fix_end_of_step_.push_back(f.get());
+  }
+  for (auto& b : bonds_) b->setup(*this);
+  for (auto& p : pairs_) p->setup(*this);
+  for (auto& f : fixes_)
+    if (f->stages() & kSetup) f->setup(*this);
+  dof_mask_ = nodes_.find<int>("dof_mask");
+  if (dof_mask_) {
+    for (size_t i = 0; i < dof_mask_->size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        if ((*dof_mask_)[i] & (1 << c)) nodes_.v[i][c] = 0.0;
+  }
+  if (!forces_valid) compute_forces();
+  integrator_->setup(*this);
+  if (verbose) {
+    std::string who;
+    double w = omega_max(&who);
+    std::printf("run: integrator %s, dt %.6g", integrator_->style_name().c_str(), dt);
+    if (w > 0) std::printf(" (stable estimate %.4g, stiffest: %s)", suggest_dt(1.0), who.c_str());
+    std::printf("\n  forces:");
+    for (auto& b : bonds_) std::printf(" bond %s;", b->id().c_str());
+    for (auto& p : pairs_) std::printf(" pair %s;", p->id().c_str());
+    for (auto* f : fix_post_force_) std::printf(" fix %s;", f->id().c_str());
+    std::printf("\n  end of step:");
+    for (auto* f : fix_end_of_step_) std::printf(" fix %s;", f->id().c_str());
+    std::printf("\n  node properties:");
+    for (auto& n : nodes_.property_names()) std::printf(" %s", n.c_str());
+    std::printf("\n");
+  }
+  good_x_ = nodes_.x;
+  good_v_ = nodes_.v;
+  good_step_ = step;
+  good_time_ = time;
+  energy_scale_ = std::max(energy_scale_, kinetic_energy() + std::abs(potential_energy()));
+}
+
+void Simulation::fail(const std::string& what, long bad_step) {
+  std::ostringstream os;
+  os << "instability at step " << bad_step << " (t = " << time << "): " << what << ".";
+  std::string who;
+  double w = omega_max(&who);
+  if (w > 0) {
+    double limit = suggest_dt(1.0);
+    if (dt > limit)
+      os << " The time step dt = " << dt << " is above the stable limit " << limit
+         << " of integrator " << integrator_->style_name() << " (stiffest mode: " << who
+         << ", omega = " << w << "); rerun with dt <= " << suggest_dt(0.5)
+         << " or dt = \"auto\".";
+    else
+      os << " dt = " << dt << " is below the stable limit " << limit << " of the stiff terms ("
+         << who << "), so look at contact overlaps, loads or nodes out of place; a smaller dt (e.g. "
+         << dt * 0.5 << ") may still help.";
+  }
+  // Dump the last good state so nothing is lost and the user can inspect it.
+  if (good_step_ >= 0) {
+    auto bad_x = nodes_.x, bad_v = nodes_.v;
+    long bad = step;
+    double bad_t = time;
+    nodes_.x = good_x_;
+    nodes_.v = good_v_;
+    step = good_step_;
+    time = good_time_;
+    for (auto& f : nodes_.f) f.setZero();
+    try {
+      write_checkpoint(guard.last_good_file);
+      os << " Last good state (step " << good_step_ << ") written to " << guard.last_good_file
+         << ".";
+    } catch (const std::exception& e) {
+      os << " (could not write the last good state: " << e.what() << ")";
+    }
+    for (auto& d : dumps_) d->flush();
+    nodes_.x = bad_x;
+    nodes_.v = bad_v;
+    step = bad;
+    time = bad_t;
+  }
+  throw InstabilityError(os.str());
+}
+
+void Simulation::check_guard(long) {
+  const size_t n = nodes_.n_owned();
+  for (size_t i = 0; i < n; ++i) {
+    if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite())
+      fail("non-finite position or velocity of node " + std::to_string(i + 1), step);
+    if (!nodes_.f[i].allFinite()) fail("non-finite force on node " + std::to_string(i + 1), step);
+  }
+  double lmin = topo_.min_rest_length();
+  if (lmin < 1e299) {
+    double vmax = 0.0;
+    size_t imax = 0;
+    for (size_t i = 0; i < n; ++i) {
+      double s = nodes_.v[i].norm();
+      if (s > vmax) {
+        vmax = s;
+        imax = i;
+      }
+    }
+    if (vmax * dt > guard.max_step_fraction * lmin) {
+      std::ostringstream os;
+      os << "node " << imax + 1 << " moves " << vmax * dt << " per step, more than "
+         << guard.max_step_fraction << " of the shortest rest length " << lmin;
+      fail(os.str(), step);
+    }
+  }
+  double ke = kinetic_energy(), pe = std::abs(potential_energy());
+  if (ke > guard.ke_factor * std::max(energy_scale_, pe) && ke > 1e-200) {
+    std::ostringstream os;
+    os << "runaway kinetic energy " << ke << " (more than " << guard.ke_factor
+       << " times the largest energy seen so far, " << std::max(energy_scale_, pe) << ")";
+    fail(os.str(), step);
+  }
+  bool any_bounds = false;
+  for (auto& [id, r] : regions_) any_bounds = any_bounds || r->bounds();
+  if (any_bounds) {
+    for (size_t i = 0; i < n; ++i) {
+      bool inside = false;
+      for (auto& [id, r] : regions_)
+        if (r->bounds() && r->contains(nodes_.x[i])) inside = true;
+      if (!inside) fail("node " + std::to_string(i + 1) + " left every bounding region", step);
+    }
+  }
+  energy_scale_ = std::max(energy_scale_, ke + pe);
+  good_x_ = nodes_.x;
+  good_v_ = nodes_.v;
+  good_step_ = step;
+  good_time_ = time;
+}
+
+void Simulation::write_thermo(bool header) {
+  std::vector<double> vals;
+  vals.reserve(thermo.columns.size());
+  for (auto& c : thermo.columns) vals.push_back(column(c));
+  if (!thermo.file.empty()) {
+    if (!thermo_csv_.is_open()) {
+      thermo_csv_.open(thermo.file, std::ios::out | std::ios::trunc);
+      if (!thermo_csv_) throw InputError("cannot open thermo file '" + thermo.file + "'");
+      thermo_header_written_ = false;
+    }
+    if (!thermo_header_written_) {
+      for (size_t i = 0; i < thermo.columns.size(); ++i)
+        thermo_csv_ << (i ? "," : "") << thermo.columns[i];
+      thermo_csv_ << "\n";
+      thermo_header_written_ = true;
+    }
+    thermo_csv_.precision(12);
+    for (size_t i = 0; i < vals.size(); ++i) {
+      // the guard runs before thermo, so values here are finite
+      thermo_csv_ << (i ? "," : "") << vals[i];
+    }
+    thermo_csv_ << "\n";
+    thermo_csv_.flush();
+  }
+  if (thermo.console && verbose) {
+    if (header) {
+      for (auto& c : thermo.columns) std::printf("%14s ", c.c_str());
+      std::printf("\n");
+    }
+    for (double v : vals) std::printf("%14.7g ", v);
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+}
+
+void Simulation::run(const RunOptions& opt) {
+  if (opt.steps < 0) throw InputError("run: steps must be >= 0");
+  setup_run();
+  for (auto& d : dumps_)
+    if (d->every() > 0 && step % d->every() == 0) d->write(*this);
+  if (thermo.every > 0) write_thermo(true);
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  auto last_progress = t0;
+  const long first = step;
+  for (long k = 1; k <= opt.steps; ++k) {
+    integrator_->step(*this);
+    ++step;
+    time += dt;
+    const bool thermo_now = thermo.every > 0 && step % thermo.every == 0;
+    bool dump_now = false;
+    for (auto& d : dumps_) dump_now = dump_now || (d->every() > 0 && step % d->every() == 0);
+    // Outputs only ever see a state the guard has passed: no NaN in files.
+    if ((guard.every > 0 && k % guard.every == 0) || thermo_now || dump_now || k == opt.steps)
+      check_guard(k);
+    if (thermo_now) write_thermo(false);
+    if (dump_now)
+      for (auto& d : dumps_)
+        if (d->every() > 0 && step % d->every() == 0) d->write(*this);
+    if (opt.callback && opt.every > 0 && k % opt.every == 0) {
+      if (opt.callback(*this)) break;
+    }
+    if (verbose && (k & 255) == 0) {
+      auto now = clock::now();
+      double since = std::chrono::duration<double>(now - last_progress).count();
+      if (since >= thermo.progress_seconds) {
+        double el = std::chrono::duration<double>(now - t0).count();
+        double rate = (step - first) / el;
+        std::printf("  progress: step %ld of %ld (%.0f%%), %.3g steps/s, %.3g node-steps/s, ETA %.0f s\n",
+                    k, opt.steps, 100.0 * k / opt.steps, rate, rate * nodes_.n_owned(),
+                    (opt.steps - k) / rate);
+        std::fflush(stdout);
+        last_progress = now;
+      }
+    }
+  }
+  for (auto& d : dumps_) d->flush();
+}
+
+long Simulation::minimize(double ftol, long max_steps) {
+  auto saved = std::move(integrator_);
+  double saved_dt = dt;
+  RawParams p;
+  if (saved && saved->requested_dt() > 0) p["dt"] = saved->requested_dt();
+  integrator_ = Registry<IntegratorStyle>::create("fire", *this, p);
+  integrator_->set_id("minimize");
+  long taken = 0;
+  bool old_verbose = verbose;
+  try {
+    setup_run();
+    verbose = false;
+    for (; taken < max_steps; ++taken) {
+      if (max_force() < ftol) break;
+      integrator_->step(*this);
+      ++step;
+      if (guard.every > 0 && (taken + 1) % guard.every == 0) check_guard(taken + 1);
+    }
+    check_guard(taken);
+  } catch (...) {
+    verbose = old_verbose;
+    integrator_ = std::move(saved);
+    throw;
+  }
+  verbose = old_verbose;
+  for (auto& v : nodes_.v) v.setZero();
+  ++state_epoch;
+  integrator_ = std::move(saved);
+  dt = saved_dt;
+  if (verbose)
+    std::printf("minimize: %ld FIRE steps, max |f| = %.3g (tolerance %.3g)\n", taken, max_force(),
+                ftol);
+  return taken;
+}
+
+#ifndef SLENDER_HAVE_HDF5
+void Simulation::write_checkpoint(const std::string&) {
+  throw InputError("checkpoints need HDF5: this slender was built with -DSLENDER_WITH_HDF5=OFF");
+}
+void Simulation::read_checkpoint(const std::string&) {
+  throw InputError("checkpoints need HDF5: this slender was built with -DSLENDER_WITH_HDF5=OFF");
+}
+#endif
+
+}  // namespace slender

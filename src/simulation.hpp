@@ -1,0 +1,159 @@
+// One scene: nodes, topology, styles, integrator, outputs and random stream.
+// There is no global state; several Simulations can live in one process.
+#pragma once
+
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nodes.hpp"
+#include "params.hpp"
+#include "style.hpp"
+#include "topology.hpp"
+
+namespace slender {
+
+// The run became unstable; the message says what, when, and which dt is stable.
+struct InstabilityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct GuardOptions {
+  long every = 10;                 // steps between checks
+  double max_step_fraction = 0.5;  // max |v| dt as a fraction of the shortest rest length
+  double ke_factor = 100.0;        // kinetic energy may not exceed this times the energy scale
+  std::string last_good_file = "slender_last_good.h5";
+};
+
+struct ThermoOptions {
+  long every = 0;
+  std::vector<std::string> columns{"step", "time", "ke", "pe", "etotal"};
+  std::string file;
+  bool console = true;
+  double progress_seconds = 5.0;
+};
+
+struct RunOptions {
+  long steps = 0;
+  long every = 0;                           // callback interval
+  std::function<bool(Simulation&)> callback;  // returns true to stop the run
+};
+
+class Simulation {
+ public:
+  explicit Simulation(int dimension = 3, std::uint64_t seed = 1);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  int dimension() const { return dim_; }
+  NodeStore& nodes() { return nodes_; }
+  const NodeStore& nodes() const { return nodes_; }
+  Topology& topology() { return topo_; }
+  const Topology& topology() const { return topo_; }
+  std::mt19937_64& rng() { return rng_; }
+  std::uint64_t seed() const { return seed_; }
+
+  // --- building the scene
+  Chain& add_chain(const std::string& name, const std::vector<Vec3>& pos, double mass_per_node,
+                   bool closed);
+  RegionStyle& add_region(const std::string& id, const std::string& style, const RawParams& p);
+  RegionStyle& region(const std::string& id);
+  void set_group(const std::string& name, std::vector<int> nodes);
+  // Node indices of a group; "all" is every owned node.
+  std::vector<int> group(const std::string& name) const;
+  bool has_group(const std::string& name) const;
+  BondStyle& add_bond(const std::string& style, const RawParams& p);
+  PairStyle& add_pair(const std::string& style, const RawParams& p);
+  FixStyle& add_fix(const std::string& id, const std::string& style, const RawParams& p);
+  ComputeStyle& add_compute(const std::string& id, const std::string& style, const RawParams& p);
+  DumpStyle& add_dump(const std::string& id, const std::string& style, const RawParams& p);
+  IntegratorStyle& set_integrator(const std::string& style, const RawParams& p);
+  void remove_fix(const std::string& id);
+  FixStyle& fix(const std::string& id);
+  ComputeStyle& compute(const std::string& id);
+  Style* find_style(const std::string& id);
+  IntegratorStyle* integrator() { return integrator_.get(); }
+  const std::vector<std::unique_ptr<BondStyle>>& bonds() const { return bonds_; }
+  const std::vector<std::unique_ptr<PairStyle>>& pairs() const { return pairs_; }
+  const std::vector<std::unique_ptr<FixStyle>>& fixes() const { return fixes_; }
+
+  // --- running
+  void run(const RunOptions& opt);
+  // FIRE energy minimisation until max |f| < ftol; returns the steps taken.
+  long minimize(double ftol, long max_steps);
+  // Zeroes forces, adds bonds, pairs and fixes; records energies by category.
+  void compute_forces();
+  void end_of_step();
+  // Free degrees of freedom: masked components (clamps) keep zero force.
+  const Property<int>* dof_mask() const { return dof_mask_; }
+  void set_dof_mask(Property<int>* m) { dof_mask_ = m; }
+
+  double dt = 0.0;
+  double time = 0.0;
+  long step = 0;
+  bool forces_valid = false;  // forces correspond to the current state
+  // Bumped whenever the state is changed outside the equations of motion
+  // (minimisation, positions set from a deck); integrators with history restart it.
+  long state_epoch = 0;
+  GuardOptions guard;
+  ThermoOptions thermo;
+
+  // --- observables
+  double kinetic_energy() const;
+  double potential_energy() const;
+  const std::map<std::string, double>& energies() const { return energy_; }
+  // A thermo column: step, time, dt, nodes, ke, pe, etotal, <id>.<key>.
+  double column(const std::string& name);
+  double max_force() const;
+  // Highest frequency of all stiff terms, and the dt the integrator can take.
+  double omega_max(std::string* who = nullptr) const;
+  double suggest_dt(double safety = 1.0) const;
+  double stability_limit() const;
+
+  // --- restart files (HDF5)
+  void write_checkpoint(const std::string& path);
+  void read_checkpoint(const std::string& path);
+
+  // Lines printed to the console (thermo, schedule); tests may silence them.
+  bool verbose = true;
+
+ private:
+  void setup_run();
+  void check_guard(long step_in_run);
+  void write_thermo(bool header);
+  void resolve_dt();
+  void fail(const std::string& what, long bad_step);
+
+  int dim_;
+  std::uint64_t seed_;
+  std::mt19937_64 rng_;
+  NodeStore nodes_;
+  Topology topo_;
+  std::map<std::string, std::unique_ptr<RegionStyle>> regions_;
+  std::map<std::string, std::vector<int>> groups_;
+  std::vector<std::unique_ptr<BondStyle>> bonds_;
+  std::vector<std::unique_ptr<PairStyle>> pairs_;
+  std::vector<std::unique_ptr<FixStyle>> fixes_;
+  std::vector<std::unique_ptr<ComputeStyle>> computes_;
+  std::vector<std::unique_ptr<DumpStyle>> dumps_;
+  std::unique_ptr<IntegratorStyle> integrator_;
+  std::vector<FixStyle*> fix_post_force_, fix_end_of_step_;
+  Property<int>* dof_mask_ = nullptr;
+  std::map<std::string, double> energy_;
+  std::ofstream thermo_csv_;
+  bool thermo_header_written_ = false;
+  // guard state
+  std::vector<Vec3> good_x_, good_v_;
+  long good_step_ = -1;
+  double good_time_ = 0.0;
+  double energy_scale_ = 0.0;
+};
+
+}  // namespace slender

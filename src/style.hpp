@@ -1,0 +1,119 @@
+// Base classes of the style families. A style receives the Simulation it lives
+// in at construction; it requests the node properties it needs there.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "nodes.hpp"
+#include "params.hpp"
+
+namespace slender {
+
+class Simulation;
+
+// Named arrays a style saves in checkpoints so a restart is bit-identical.
+using StateMap = std::map<std::string, std::vector<double>>;
+
+class Style {
+ public:
+  virtual ~Style() = default;
+  const std::string& style_name() const { return style_name_; }
+  void set_style_name(const std::string& s) { style_name_ = s; }
+  const std::string& id() const { return id_; }
+  void set_id(const std::string& s) { id_ = s; }
+
+  virtual void save_state(StateMap&) const {}
+  virtual void load_state(const StateMap&) {}
+  // Scalars this style offers to thermo as "<id>.<key>".
+  virtual std::vector<std::string> value_keys() const { return {}; }
+  virtual double value(const std::string& key) const;
+  // Changes parameters between runs (sim:modify). Default: not supported.
+  virtual void modify(const RawParams& raw);
+
+ private:
+  std::string style_name_, id_;
+};
+
+// Interactions along chains (stretching, bending, torsion, hysteresis).
+class BondStyle : public Style {
+ public:
+  static const char* family() { return "bond"; }
+  // Adds forces to nodes().f and returns the energy of this style.
+  virtual double compute(Simulation& sim) = 0;
+  // Energy category for thermo ("stretch", "bend", ...).
+  virtual const char* energy_category() const = 0;
+  // Highest angular frequency this style can excite, for the stable time step.
+  virtual double max_frequency(const Simulation& sim) const = 0;
+  // Chains this instance acts on.
+  virtual void setup(Simulation&) {}
+};
+
+// Contacts found by neighbour search (families in later issues).
+class PairStyle : public Style {
+ public:
+  static const char* family() { return "pair"; }
+  virtual void setup(Simulation&) {}
+  virtual double compute(Simulation& sim) = 0;
+  virtual double max_frequency(const Simulation& sim) const = 0;
+};
+
+// Step stages a fix can act at.
+enum FixStage : unsigned {
+  kSetup = 1u << 0,
+  kPostForce = 1u << 1,
+  kEndOfStep = 1u << 2,
+};
+
+class FixStyle : public Style {
+ public:
+  static const char* family() { return "fix"; }
+  virtual unsigned stages() const = 0;
+  virtual void setup(Simulation&) {}
+  // Adds forces; returns the potential energy of conservative fixes (else 0).
+  virtual double post_force(Simulation&) { return 0.0; }
+  virtual void end_of_step(Simulation&) {}
+  virtual double max_frequency(const Simulation&) const { return 0.0; }
+};
+
+class ComputeStyle : public Style {
+ public:
+  static const char* family() { return "compute"; }
+  virtual void evaluate(Simulation& sim) = 0;
+};
+
+class DumpStyle : public Style {
+ public:
+  static const char* family() { return "dump"; }
+  virtual long every() const = 0;
+  virtual void write(Simulation& sim) = 0;
+  virtual void flush() {}
+};
+
+class IntegratorStyle : public Style {
+ public:
+  static const char* family() { return "integrator"; }
+  // Prepares state (e.g. higher derivatives) before the first step of a run.
+  virtual void setup(Simulation& sim) = 0;
+  virtual void step(Simulation& sim) = 0;
+  // Largest omega*dt for which the scheme is stable on an undamped oscillator.
+  virtual double stability_limit() const = 0;
+  // Requested time step, or <= 0 for "auto".
+  virtual double requested_dt() const = 0;
+  virtual double safety() const { return 0.5; }
+};
+
+class RegionStyle : public Style {
+ public:
+  static const char* family() { return "region"; }
+  virtual bool contains(const Vec3& x) const = 0;
+  // Part of the domain: a node outside every bounding region stops the run.
+  bool bounds() const { return bounds_; }
+  void set_bounds(bool b) { bounds_ = b; }
+
+ private:
+  bool bounds_ = false;
+};
+
+}  // namespace slender

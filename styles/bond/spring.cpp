@@ -1,0 +1,65 @@
+// Hookean stretching spring on every edge of the selected chains (MODELS.md §2.1, (3.1)):
+// E = 1/2 k (|e| - l0)^2; force on the tail node +k(|e|-l0) t, on the head the opposite.
+#include <cmath>
+
+#include "chain_select.hpp"
+#include "registry.hpp"
+
+namespace slender {
+
+class SpringBond : public BondStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("bond", name, "Hookean stretching spring along every edge of a chain");
+    s.real("k", "spring stiffness k1 = YA/l0 (force per length)").required().positive();
+    s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
+        .def(std::vector<std::string>{});
+    return s;
+  }
+  SpringBond(Simulation& sim, const ParamValues& p)
+      : k_(p.real("k")), names_(p.strings("chains")) {
+    select_chains(sim, names_);  // validates the names now, at the deck line
+  }
+  void setup(Simulation& sim) override { chains_ = select_chains(sim, names_); }
+  const char* energy_category() const override { return "stretch"; }
+  double compute(Simulation& sim) override {
+    if (chains_.empty()) setup(sim);
+    auto& x = sim.nodes().x;
+    auto& f = sim.nodes().f;
+    double energy = 0.0;
+    for (auto* c : chains_) {
+      const int ne = c->n_edges();
+      for (int e = 0; e < ne; ++e) {
+        const int a = c->edge_tail(e), b = c->edge_head(e);
+        const Vec3 d = x[b] - x[a];
+        const double len = d.norm();
+        const double stretch = len - c->rest_length[e];
+        const Vec3 fa = (k_ * stretch / len) * d;
+        f[a] += fa;
+        f[b] -= fa;
+        energy += 0.5 * k_ * stretch * stretch;
+      }
+    }
+    return energy;
+  }
+  double max_frequency(const Simulation& sim) const override {
+    auto ch = select_chains(sim, names_);
+    if (ch.empty()) return 0.0;
+    // zone-boundary mode of a uniform chain: omega^2 = 4k/m
+    return 2.0 * std::sqrt(k_ / min_mass(sim, ch));
+  }
+  std::vector<std::string> value_keys() const override { return {"k"}; }
+  double value(const std::string& key) const override {
+    if (key == "k") return k_;
+    return BondStyle::value(key);
+  }
+
+ private:
+  double k_;
+  std::vector<std::string> names_;
+  std::vector<const Chain*> chains_;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::BondStyle, "spring", slender::SpringBond)

@@ -1,0 +1,56 @@
+// Clamps degrees of freedom of a group: the masked components keep zero force and
+// velocity, so every integrator leaves them where they are. For director-free wires
+// a clamped rotation is the direction of the end edge, so `rotation = true` also
+// clamps the chain neighbour of every chain end in the group.
+#include "registry.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+class ClampFix : public FixStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("fix", name, "fix positions (some or all components) and end rotations of a group");
+    s.string("group", "node group").required();
+    s.string("components", "position components to fix, any of x, y, z").def(std::string("xyz"));
+    s.boolean("rotation", "also clamp the end-edge direction of chain ends in the group")
+        .def(false);
+    return s;
+  }
+  ClampFix(Simulation& sim, const ParamValues& p) {
+    int bits = 0;
+    for (char ch : p.str("components")) {
+      if (ch == 'x') bits |= 1;
+      else if (ch == 'y') bits |= 2;
+      else if (ch == 'z') bits |= 4;
+      else throw InputError("fix 'clamp': components must use only x, y, z, got \"" + p.str("components") + "\"");
+    }
+    auto nodes = sim.group(p.str("group"));
+    auto& mask = sim.nodes().require<int>("dof_mask", 0);
+    auto add = [&](int i) { mask[i] |= bits; };
+    for (int i : nodes) add(i);
+    if (p.boolean("rotation")) {
+      for (auto& c : sim.topology().chains) {
+        if (c.closed) continue;
+        for (int i : nodes) {
+          if (i == c.nodes.front()) add(c.nodes[1]);
+          if (i == c.nodes.back()) add(c.nodes[c.nodes.size() - 2]);
+        }
+      }
+    }
+    count_ = static_cast<int>(nodes.size());
+  }
+  unsigned stages() const override { return 0; }
+  std::vector<std::string> value_keys() const override { return {"count"}; }
+  double value(const std::string& key) const override {
+    if (key == "count") return count_;
+    return FixStyle::value(key);
+  }
+
+ private:
+  int count_ = 0;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::FixStyle, "clamp", slender::ClampFix)

@@ -1,0 +1,90 @@
+// A constant (or linearly ramped) external force on every node of a group:
+// F(t) = force + rate (t - t0). Its potential is -F . (x - x_ref).
+#include "registry.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+class ConstantForceFix : public FixStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("fix", name, "constant or linearly ramped external force on each node of a group");
+    s.string("group", "node group").required();
+    s.vector("force", "force vector on each node").required().length(2, 3);
+    s.vector("rate", "d force / dt, for slow load ramps").def(std::vector<double>{0, 0, 0}).length(2, 3);
+    return s;
+  }
+  ConstantForceFix(Simulation& sim, const ParamValues& p)
+      : group_(p.str("group")), force_(p.vec3("force")), rate_(p.vec3("rate")), t0_(sim.time) {
+    nodes_ = sim.group(group_);
+    for (int i : nodes_) ref_.push_back(sim.nodes().x[i]);
+  }
+  unsigned stages() const override { return kPostForce | kSetup; }
+  void setup(Simulation& sim) override {
+    if (nodes_.size() != sim.group(group_).size()) {
+      nodes_ = sim.group(group_);
+      ref_.clear();
+      for (int i : nodes_) ref_.push_back(sim.nodes().x[i]);
+    }
+  }
+  Vec3 current(double t) const { return force_ + rate_ * (t - t0_); }
+  double post_force(Simulation& sim) override {
+    const Vec3 F = current(sim.time);
+    auto& f = sim.nodes().f;
+    auto& x = sim.nodes().x;
+    double e = 0.0;
+    for (size_t k = 0; k < nodes_.size(); ++k) {
+      f[nodes_[k]] += F;
+      e -= F.dot(x[nodes_[k]] - ref_[k]);
+    }
+    last_ = F;
+    return e;
+  }
+  void modify(const RawParams& raw) override {
+    RawParams merged = raw;
+    if (!merged.count("group")) merged["group"] = group_;
+    if (!merged.count("force"))
+      merged["force"] = std::vector<double>{force_.x(), force_.y(), force_.z()};
+    auto p = spec(style_name()).validate(merged);
+    force_ = p.vec3("force");
+    rate_ = p.vec3("rate");
+  }
+  void save_state(StateMap& st) const override {
+    st["t0"] = {t0_};
+    st["force"] = {force_.x(), force_.y(), force_.z()};
+    st["rate"] = {rate_.x(), rate_.y(), rate_.z()};
+    std::vector<double> r;
+    for (auto& v : ref_) r.insert(r.end(), {v.x(), v.y(), v.z()});
+    st["ref"] = r;
+  }
+  void load_state(const StateMap& st) override {
+    t0_ = st.at("t0")[0];
+    auto& fo = st.at("force");
+    force_ = Vec3(fo[0], fo[1], fo[2]);
+    auto& ra = st.at("rate");
+    rate_ = Vec3(ra[0], ra[1], ra[2]);
+    auto& r = st.at("ref");
+    ref_.resize(r.size() / 3);
+    for (size_t i = 0; i < ref_.size(); ++i) ref_[i] = Vec3(r[3 * i], r[3 * i + 1], r[3 * i + 2]);
+  }
+  std::vector<std::string> value_keys() const override { return {"fx", "fy", "fz", "magnitude"}; }
+  double value(const std::string& key) const override {
+    if (key == "fx") return last_.x();
+    if (key == "fy") return last_.y();
+    if (key == "fz") return last_.z();
+    if (key == "magnitude") return last_.norm();
+    return FixStyle::value(key);
+  }
+
+ private:
+  std::string group_;
+  Vec3 force_, rate_;
+  double t0_;
+  std::vector<int> nodes_;
+  std::vector<Vec3> ref_;
+  Vec3 last_ = Vec3::Zero();
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::FixStyle, "force/constant", slender::ConstantForceFix)

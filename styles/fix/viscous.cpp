@@ -1,0 +1,51 @@
+// Viscous damping F = -gamma v on a group (MODELS.md §2.1, "small viscous damping").
+#include "registry.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+class ViscousDampingFix : public FixStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("fix", name, "viscous damping force -gamma v on every node of a group");
+    s.real("gamma", "drag coefficient (force per velocity)").required().nonnegative();
+    s.string("group", "node group").def(std::string("all"));
+    return s;
+  }
+  ViscousDampingFix(Simulation& sim, const ParamValues& p)
+      : gamma_(p.real("gamma")), group_(p.str("group")) {
+    sim.group(group_);
+  }
+  unsigned stages() const override { return kPostForce | kSetup; }
+  void setup(Simulation& sim) override { nodes_ = sim.group(group_); }
+  double post_force(Simulation& sim) override {
+    auto& f = sim.nodes().f;
+    auto& v = sim.nodes().v;
+    for (int i : nodes_) f[i] -= gamma_ * v[i];
+    return 0.0;
+  }
+  // Explicit schemes need gamma dt / m below ~1; report gamma/m as a rate.
+  double max_frequency(const Simulation& sim) const override {
+    double mmin = 1e300;
+    for (int i : sim.group(group_)) mmin = std::min(mmin, sim.nodes().mass[i]);
+    return mmin < 1e300 ? gamma_ / mmin : 0.0;
+  }
+  void modify(const RawParams& raw) override {
+    auto p = spec(style_name()).validate(raw);
+    gamma_ = p.real("gamma");
+  }
+  std::vector<std::string> value_keys() const override { return {"gamma"}; }
+  double value(const std::string& key) const override {
+    if (key == "gamma") return gamma_;
+    return FixStyle::value(key);
+  }
+
+ private:
+  double gamma_;
+  std::string group_;
+  std::vector<int> nodes_;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::FixStyle, "damping/viscous", slender::ViscousDampingFix)

@@ -1,0 +1,43 @@
+// Velocity Verlet (kick-drift-kick). Second order, symplectic, stable for omega dt < 2.
+#include "registry.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+
+class VelocityVerletIntegrator : public IntegratorStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("integrator", name, "velocity Verlet, 2nd order, symplectic (omega dt < 2)");
+    s.add("dt", ParamType::RealOrAuto, "time step, or \"auto\" = safety * 2 / omega_max")
+        .def(std::string("auto"))
+        .positive();
+    s.real("safety", "fraction of the stable step used by dt = \"auto\"").def(0.5).positive().max(1.0);
+    return s;
+  }
+  VelocityVerletIntegrator(Simulation&, const ParamValues& p)
+      : dt_(p.is_auto("dt") ? 0.0 : p.real("dt")), safety_(p.real("safety")) {}
+  double requested_dt() const override { return dt_; }
+  double safety() const override { return safety_; }
+  double stability_limit() const override { return 2.0; }
+  void setup(Simulation&) override {}
+  void step(Simulation& sim) override {
+    auto& n = sim.nodes();
+    const double h = sim.dt;
+    const size_t N = n.n_owned();
+    for (size_t i = 0; i < N; ++i) {
+      n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
+      n.x[i] += h * n.v[i];
+    }
+    sim.compute_forces();
+    for (size_t i = 0; i < N; ++i) n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
+    sim.end_of_step();
+  }
+
+ private:
+  double dt_, safety_;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::IntegratorStyle, "verlet", slender::VelocityVerletIntegrator)

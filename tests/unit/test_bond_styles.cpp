@@ -1,0 +1,104 @@
+// Unit tests of the bond styles: spring and bend2d.
+#include <cmath>
+
+#include "helpers.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+TEST(SpringBond, ForceMatchesEnergyGradient) {
+  Simulation sim(3, 1);
+  sim.add_chain("w", wiggly_chain(8, 3, 11), 1.0, false);
+  // stretch the chain by 7% so every spring carries load
+  for (auto& x : sim.nodes().x) x *= 1.07;
+  sim.add_bond("spring", P({{"k", 250.0}}));
+  EXPECT_LT(fd_force_error(sim), 1e-6);
+  EXPECT_GT(sim.potential_energy(), 0.0);
+}
+
+TEST(SpringBond, ClosedChainAndExactValue) {
+  Simulation sim(2, 1);
+  sim.add_chain("ring", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, 1.0, true);
+  auto& x = sim.nodes().x;
+  x[1] = Vec3(1.5, 0, 0);  // first edge stretched by 0.5, third edge (0,1)->(0,0) unchanged
+  sim.add_bond("spring", P({{"k", 100.0}}));
+  sim.compute_forces();
+  // edge 0: 0.5 stretch; edge 1: |(0,1)-(1.5,0)| - sqrt(2)
+  const double s1 = std::sqrt(1.5 * 1.5 + 1.0) - std::sqrt(2.0);
+  EXPECT_NEAR(sim.energies().at("stretch"), 0.5 * 100 * (0.25 + s1 * s1), 1e-12);
+  EXPECT_NEAR(sim.nodes().f[0].x(), 100 * 0.5, 1e-12);  // pulled towards node 1
+  EXPECT_LT(fd_force_error(sim), 1e-6);
+}
+
+TEST(SpringBond, RejectsBadParameters) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", wiggly_chain(3, 2, 1), 1.0, false);
+  EXPECT_THROW(sim.add_bond("spring", P({{"k", -1.0}})), InputError);
+  EXPECT_THROW(sim.add_bond("spring", P({{"k", 1.0}, {"kk", 2.0}})), InputError);
+  EXPECT_THROW(sim.add_bond("spring", P({{"k", std::string("stiff")}})), InputError);
+  EXPECT_THROW(sim.add_bond("spring", P({})), InputError);
+  EXPECT_THROW(sim.add_bond("spring", P({{"k", 1.0}, {"chains", std::vector<std::string>{"nope"}}})),
+               InputError);
+}
+
+TEST(Bend2dBond, ForceMatchesEnergyGradient) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", wiggly_chain(9, 2, 5, 0.4), 1.0, false);
+  sim.add_bond("bend2d", P({{"k", 60.0}}));
+  EXPECT_LT(fd_force_error(sim), 1e-6);
+}
+
+TEST(Bend2dBond, SignedAngleAndMoment) {
+  Simulation sim(2, 1);
+  // a left turn by 30 degrees at the middle node
+  const double a = M_PI / 6;
+  sim.add_chain("w", {Vec3(-1, 0, 0), Vec3(0, 0, 0), Vec3(std::cos(a), std::sin(a), 0)}, 1.0, false);
+  sim.add_bond("bend2d", P({{"k", 60.0}}));
+  sim.compute_forces();
+  EXPECT_NEAR(sim.energies().at("bend"), 0.5 * 60 * a * a, 1e-12);
+  // the moment k zeta tries to straighten the wire: the tip is pushed clockwise
+  const Vec3 tip = sim.nodes().x[2];
+  const Vec3 f = sim.nodes().f[2];
+  EXPECT_LT(tip.x() * f.y() - tip.y() * f.x(), 0.0);
+  EXPECT_NEAR(f.norm(), 60 * a / 1.0, 1e-12);  // |F| = m / |e|
+  // forces sum to zero and produce no net torque
+  Vec3 sum = Vec3::Zero();
+  double torque = 0;
+  for (int i = 0; i < 3; ++i) {
+    sum += sim.nodes().f[i];
+    torque += sim.nodes().x[i].x() * sim.nodes().f[i].y() - sim.nodes().x[i].y() * sim.nodes().f[i].x();
+  }
+  EXPECT_LT(sum.norm(), 1e-12);
+  EXPECT_NEAR(torque, 0.0, 1e-12);
+}
+
+TEST(Bend2dBond, ClosedRingIsForceFreeWhenRegular) {
+  Simulation sim(2, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 12; ++i) pts.emplace_back(std::cos(2 * M_PI * i / 12), std::sin(2 * M_PI * i / 12), 0);
+  sim.add_chain("ring", pts, 1.0, true);
+  sim.add_bond("bend2d", P({{"k", 5.0}}));
+  sim.compute_forces();
+  // every hinge turns by 2 pi / 12, all in the same sense
+  EXPECT_NEAR(sim.energies().at("bend"), 12 * 0.5 * 5.0 * std::pow(2 * M_PI / 12, 2), 1e-10);
+  // equal turning angles minimise sum zeta^2 at fixed total turning 2 pi
+  EXPECT_LT(sim.max_force(), 1e-10);
+  sim.nodes().x[3] += Vec3(0.05, -0.02, 0);
+  EXPECT_LT(fd_force_error(sim), 1e-6);
+}
+
+TEST(Bend2dBond, Needs2D) {
+  Simulation sim(3, 1);
+  sim.add_chain("w", wiggly_chain(3, 3, 1), 1.0, false);
+  EXPECT_THROW(sim.add_bond("bend2d", P({{"k", 1.0}})), InputError);
+}
+
+TEST(BondStyles, StiffestModeMatchesChainDispersion) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", wiggly_chain(5, 2, 1, 0.0), 2.0, false);
+  sim.add_bond("spring", P({{"k", 800.0}}));
+  EXPECT_NEAR(sim.omega_max(), 2 * std::sqrt(800.0 / 2.0), 1e-12);
+  sim.add_bond("bend2d", P({{"k", 50.0}}));
+  const double wb = 4 * std::sqrt(50.0 / 2.0);
+  EXPECT_NEAR(sim.omega_max(), std::sqrt(4 * 800.0 / 2.0 + wb * wb), 1e-9);
+}

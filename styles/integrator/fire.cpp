@@ -19,6 +19,7 @@ class FireIntegrator : public IntegratorStyle {
     s.real("f_inc", "step growth factor").def(1.1).min(1.0);
     s.real("f_dec", "step shrink factor on an uphill step").def(0.5).positive().max(1.0);
     s.real("f_alpha", "alpha decay factor").def(0.99).positive().max(1.0);
+    s.real("dt_min", "smallest step as a multiple of the initial one").def(0.02).positive().max(1.0);
     return s;
   }
   FireIntegrator(Simulation&, const ParamValues& p)
@@ -29,7 +30,8 @@ class FireIntegrator : public IntegratorStyle {
         nmin_(p.integer("n_min")),
         finc_(p.real("f_inc")),
         fdec_(p.real("f_dec")),
-        falpha_(p.real("f_alpha")) {}
+        falpha_(p.real("f_alpha")),
+        dtmin_factor_(p.real("dt_min")) {}
   double requested_dt() const override { return dt_; }
   double safety() const override { return safety_; }
   double stability_limit() const override { return 2.0; }
@@ -40,9 +42,10 @@ class FireIntegrator : public IntegratorStyle {
     }
     h_ = sim.dt;
     hmax_ = dtmax_factor_ * h_;
-    const double stable = sim.suggest_dt(0.9);
+    const double stable = sim.suggest_dt(0.5);
     if (stable > 0) hmax_ = std::min(hmax_, stable);
     hmax_ = std::max(hmax_, h_);
+    hmin_ = dtmin_factor_ * h_;
     alpha_ = alpha0_;
     npos_ = 0;
     initialized_ = true;
@@ -52,14 +55,15 @@ class FireIntegrator : public IntegratorStyle {
     const size_t N = n.n_owned();
     double P = 0.0;
     for (size_t i = 0; i < N; ++i) P += n.f[i].dot(n.v[i]);
-    if (P > 0) {
+    // P = 0 (at rest, e.g. right after a reset) is not uphill
+    if (P >= 0) {
       if (++npos_ > nmin_) {
         h_ = std::min(h_ * finc_, hmax_);
         alpha_ *= falpha_;
       }
     } else {
       npos_ = 0;
-      h_ *= fdec_;
+      h_ = std::max(h_ * fdec_, hmin_);
       alpha_ = alpha0_;
       for (size_t i = 0; i < N; ++i) {
         n.x[i] -= 0.5 * h_ * n.v[i];
@@ -84,7 +88,7 @@ class FireIntegrator : public IntegratorStyle {
     sim.end_of_step();
   }
   void save_state(StateMap& st) const override {
-    st["fire"] = {initialized_ ? 1.0 : 0.0, h_, hmax_, alpha_, static_cast<double>(npos_)};
+    st["fire"] = {initialized_ ? 1.0 : 0.0, h_, hmax_, alpha_, static_cast<double>(npos_), hmin_};
   }
   void load_state(const StateMap& st) override {
     auto& g = st.at("fire");
@@ -93,14 +97,15 @@ class FireIntegrator : public IntegratorStyle {
     hmax_ = g[2];
     alpha_ = g[3];
     npos_ = static_cast<long>(g[4]);
+    hmin_ = g[5];
   }
 
  private:
   double dt_, safety_, dtmax_factor_, alpha0_;
   long nmin_;
-  double finc_, fdec_, falpha_;
+  double finc_, fdec_, falpha_, dtmin_factor_;
   bool initialized_ = false;
-  double h_ = 0, hmax_ = 0, alpha_ = 0;
+  double h_ = 0, hmax_ = 0, hmin_ = 0, alpha_ = 0;
   long npos_ = 0;
 };
 

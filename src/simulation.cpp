@@ -456,6 +456,18 @@ void Simulation::write_thermo(bool header) {
   }
 }
 
+void Simulation::after_step(long k, bool last) {
+  const bool thermo_now = thermo.every > 0 && step % thermo.every == 0;
+  bool dump_now = false;
+  for (auto& d : dumps_) dump_now = dump_now || (d->every() > 0 && step % d->every() == 0);
+  // Outputs only ever see a state the guard has passed: no NaN in files.
+  if ((guard.every > 0 && k % guard.every == 0) || thermo_now || dump_now || last) check_guard(k);
+  if (thermo_now) write_thermo(false);
+  if (dump_now)
+    for (auto& d : dumps_)
+      if (d->every() > 0 && step % d->every() == 0) d->write(*this);
+}
+
 void Simulation::run(const RunOptions& opt) {
   if (opt.steps < 0) throw InputError("run: steps must be >= 0");
   setup_run();
@@ -470,16 +482,7 @@ void Simulation::run(const RunOptions& opt) {
     integrator_->step(*this);
     ++step;
     time += dt;
-    const bool thermo_now = thermo.every > 0 && step % thermo.every == 0;
-    bool dump_now = false;
-    for (auto& d : dumps_) dump_now = dump_now || (d->every() > 0 && step % d->every() == 0);
-    // Outputs only ever see a state the guard has passed: no NaN in files.
-    if ((guard.every > 0 && k % guard.every == 0) || thermo_now || dump_now || k == opt.steps)
-      check_guard(k);
-    if (thermo_now) write_thermo(false);
-    if (dump_now)
-      for (auto& d : dumps_)
-        if (d->every() > 0 && step % d->every() == 0) d->write(*this);
+    after_step(k, k == opt.steps);
     if (opt.callback && opt.every > 0 && k % opt.every == 0) {
       if (opt.callback(*this)) break;
     }
@@ -511,14 +514,17 @@ long Simulation::minimize(double ftol, long max_steps) {
   bool old_verbose = verbose;
   try {
     setup_run();
-    verbose = false;
+    if (thermo.every > 0) write_thermo(true);
     for (; taken < max_steps; ++taken) {
       if (max_force() < ftol) break;
       integrator_->step(*this);
       ++step;
-      if (guard.every > 0 && (taken + 1) % guard.every == 0) check_guard(taken + 1);
+      time += dt;
+      after_step(taken + 1, false);
     }
     check_guard(taken);
+    if (thermo.every > 0 && step % thermo.every != 0) write_thermo(false);
+    for (auto& d : dumps_) d->flush();
   } catch (...) {
     verbose = old_verbose;
     integrator_ = std::move(saved);
@@ -528,7 +534,7 @@ long Simulation::minimize(double ftol, long max_steps) {
   for (auto& v : nodes_.v) v.setZero();
   ++state_epoch;
   integrator_ = std::move(saved);
-  dt = saved_dt;
+  if (saved_dt > 0) dt = saved_dt;  // else keep FIRE's last step as the scene's dt
   if (verbose)
     std::printf("minimize: %ld FIRE steps, max |f| = %.3g (tolerance %.3g)\n", taken, max_force(),
                 ftol);

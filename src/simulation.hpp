@@ -127,6 +127,8 @@ class Simulation {
  private:
   void setup_run();
   void check_guard(long step_in_run);
+  // Guard, thermo and dumps after step k of a run or minimisation.
+  void after_step(long k, bool last);
   void write_thermo(bool header);
   void resolve_dt();
   void fail(const std::string& what, long bad_step);

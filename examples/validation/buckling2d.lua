@@ -74,3 +74,8 @@ local pc = 0.5 * (lo + hi)
 slender.result { case = "buckling2d", bc = bc, nodes = N, integrator = integ, pc = pc, ref = Pref,
   rel_error = math.abs(pc - Pref) / Pref, bracket = (hi - lo) / Pref, runs = iterations + 2,
   steps = steps, wall_s = wall }
+-- tests pass -v check=TOL to turn the comparison into an assertion
+local check = slender.var("check")
+if check then
+  assert(math.abs(pc - Pref) / Pref < check, string.format("relative error %.3e exceeds the tolerance %.3e", math.abs(pc - Pref) / Pref, check))
+end

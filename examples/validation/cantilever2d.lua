@@ -53,3 +53,8 @@ slender.result { case = "cantilever2d", alpha = alpha, nodes = N, integrator = i
   steps = steps, wall_s = wall, tip_x = x, tip_y = y, ref_x = xr, ref_y = yr, rel_error = rel,
   eb_y = eb, eb_error = math.abs(y - eb) / math.abs(eb),
   node_steps_per_s = (N + 1) * steps / math.max(wall, 1e-9) }
+-- tests pass -v check=TOL to turn the comparison into an assertion
+local check = slender.var("check")
+if check then
+  assert(rel < check, string.format("relative error %.3e exceeds the tolerance %.3e", rel, check))
+end

@@ -45,6 +45,7 @@ Chain& Simulation::add_chain(const std::string& name, const std::vector<Vec3>& p
   }
   topo_.chains.push_back(std::move(c));
   groups_[name] = topo_.chains.back().nodes;
+  schedule_dirty_ = true;  // chain pointers held by styles may have moved
   return topo_.chains.back();
 }
 
@@ -69,6 +70,7 @@ void Simulation::set_group(const std::string& name, std::vector<int> idx) {
     if (i < 0 || static_cast<size_t>(i) >= nodes_.size())
       throw InputError("group '" + name + "': node index out of range");
   groups_[name] = std::move(idx);
+  schedule_dirty_ = true;
 }
 
 std::vector<int> Simulation::group(const std::string& name) const {
@@ -105,6 +107,7 @@ BondStyle& Simulation::add_bond(const std::string& style, const RawParams& p) {
   b->set_id(unique_id(bonds_, style));
   bonds_.push_back(std::move(b));
   forces_valid = false;
+  schedule_dirty_ = true;
   return *bonds_.back();
 }
 PairStyle& Simulation::add_pair(const std::string& style, const RawParams& p) {
@@ -112,6 +115,7 @@ PairStyle& Simulation::add_pair(const std::string& style, const RawParams& p) {
   b->set_id(unique_id(pairs_, style));
   pairs_.push_back(std::move(b));
   forces_valid = false;
+  schedule_dirty_ = true;
   return *pairs_.back();
 }
 Style* Simulation::find_style(const std::string& id) {
@@ -134,6 +138,7 @@ FixStyle& Simulation::add_fix(const std::string& id, const std::string& style,
   f->set_id(id);
   fixes_.push_back(std::move(f));
   forces_valid = false;
+  schedule_dirty_ = true;
   return *fixes_.back();
 }
 void Simulation::remove_fix(const std::string& id) {
@@ -141,6 +146,7 @@ void Simulation::remove_fix(const std::string& id) {
     if ((*it)->id() == id) {
       fixes_.erase(it);
       forces_valid = false;
+      schedule_dirty_ = true;
       return;
     }
   throw InputError("unknown fix '" + id + "'");
@@ -179,7 +185,23 @@ IntegratorStyle& Simulation::set_integrator(const std::string& style, const RawP
 
 // ---------------------------------------------------------------- forces
 
+void Simulation::build_schedule() {
+  fix_post_force_.clear();
+  fix_end_of_step_.clear();
+  for (auto& f : fixes_) {
+    if (f->stages() & kPostForce) fix_post_force_.push_back(f.get());
+    if (f->stages() & kEndOfStep) fix_end_of_step_.push_back(f.get());
+  }
+  for (auto& b : bonds_) b->setup(*this);
+  for (auto& p : pairs_) p->setup(*this);
+  for (auto& f : fixes_)
+    if (f->stages() & kSetup) f->setup(*this);
+  dof_mask_ = nodes_.find<int>("dof_mask");
+  schedule_dirty_ = false;
+}
+
 void Simulation::compute_forces() {
+  if (schedule_dirty_) build_schedule();
   for (auto& f : nodes_.f) f.setZero();
   for (auto& [k, e] : energy_) e = 0.0;
   for (auto& b : bonds_) energy_[b->energy_category()] += b->compute(*this);
@@ -289,17 +311,7 @@ void Simulation::resolve_dt() {
 void Simulation::setup_run() {
   if (nodes_.size() == 0) throw InputError("the scene has no nodes");
   resolve_dt();
-  fix_post_force_.clear();
-  fix_end_of_step_.clear();
-  for (auto& f : fixes_) {
-    if (f->stages() & kPostForce) fix_post_force_.push_back(f.get());
-    if (f->stages() & kEndOfStep) fix_end_of_step_.push_back(f.get());
-  }
-  for (auto& b : bonds_) b->setup(*this);
-  for (auto& p : pairs_) p->setup(*this);
-  for (auto& f : fixes_)
-    if (f->stages() & kSetup) f->setup(*this);
-  dof_mask_ = nodes_.find<int>("dof_mask");
+  build_schedule();
   if (dof_mask_) {
     for (size_t i = 0; i < dof_mask_->size(); ++i)
       for (int c = 0; c < 3; ++c)

@@ -126,6 +126,8 @@ class Simulation {
 
  private:
   void setup_run();
+  // Resolves which fixes act at which stage and lets styles bind to the scene.
+  void build_schedule();
   void check_guard(long step_in_run);
   // Guard, thermo and dumps after step k of a run or minimisation.
   void after_step(long k, bool last);
@@ -148,6 +150,7 @@ class Simulation {
   std::unique_ptr<IntegratorStyle> integrator_;
   std::vector<FixStyle*> fix_post_force_, fix_end_of_step_;
   Property<int>* dof_mask_ = nullptr;
+  bool schedule_dirty_ = true;
   std::map<std::string, double> energy_;
   std::ofstream thermo_csv_;
   bool thermo_header_written_ = false;

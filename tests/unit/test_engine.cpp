@@ -1,0 +1,258 @@
+// Engine tests: registry and parameter declarations, node properties, regions,
+// computes, independence of scenes, the instability guard, dumps and checkpoints.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "helpers.hpp"
+#include "registry.hpp"
+#ifdef SLENDER_HAVE_HDF5
+#include "h5util.hpp"
+#endif
+
+using namespace slender;
+using namespace slender::test;
+
+TEST(Registry, EveryFamilyHasItsFirstStylesAndHelp) {
+  for (auto name : {"spring", "bend2d", "clamp", "force/constant", "damping/viscous", "wall/sphere",
+                    "wall/circle", "energy", "count", "verlet", "gear", "fire", "circle", "sphere", "box"})
+    EXPECT_EQ(Catalog::lookup(name).size(), 1u) << name;
+  for (auto& e : Catalog::entries()) {
+    ParamSpec s = e.spec();
+    EXPECT_FALSE(s.summary.empty()) << e.name;
+    EXPECT_EQ(s.family, e.family) << e.name;
+    for (auto& d : s.decls) EXPECT_FALSE(d.help.empty()) << e.name << "." << d.name;
+    EXPECT_NE(s.help_text().find(e.name), std::string::npos);
+  }
+  EXPECT_TRUE(Catalog::lookup("no-such-style").empty());
+}
+
+TEST(Params, ValidationMessagesNameTheProblem) {
+  ParamSpec s("bond", "demo", "a demo");
+  s.real("k", "stiffness").required().positive();
+  s.integer("n", "count").def(3.0).min(1).max(5);
+  s.string("mode", "mode").def(std::string("a")).choices({"a", "b"});
+  s.vector("v", "vector").def(std::vector<double>{0, 0}).length(2, 3);
+  auto expect_msg = [&](RawParams raw, const std::string& part) {
+    try {
+      s.validate(raw);
+      ADD_FAILURE() << "no error for " << part;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  expect_msg(P({}), "missing required key 'k'");
+  expect_msg(P({{"k", 1.0}, {"q", 1.0}}), "unknown key 'q'");
+  expect_msg(P({{"k", 0.0}}), "'k' = 0 is out of range (0, inf]");
+  expect_msg(P({{"k", 1.0}, {"n", 2.5}}), "'n' expects a integer");
+  expect_msg(P({{"k", 1.0}, {"n", 9.0}}), "out of range [1, 5]");
+  expect_msg(P({{"k", 1.0}, {"mode", std::string("c")}}), "is not one of \"a\" \"b\"");
+  expect_msg(P({{"k", 1.0}, {"v", std::vector<double>{1}}}), "needs 2 to 3 values");
+  auto ok = s.validate(P({{"k", 2.0}}));
+  EXPECT_EQ(ok.integer("n"), 3);
+  EXPECT_EQ(ok.str("mode"), "a");
+  EXPECT_EQ(ok.vec3("v"), Vec3::Zero());
+}
+
+TEST(NodeStore, PropertiesAreAllocatedOnlyOnRequest) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", wiggly_chain(5, 2, 1), 1.0, false);
+  sim.add_bond("spring", P({{"k", 10.0}}));
+  sim.set_integrator("verlet", P({{"dt", 0.01}}));
+  EXPECT_EQ(sim.nodes().property_names().size(), 4u);  // position velocity force mass
+  sim.set_integrator("gear", P({{"values", 5.0}}));
+  EXPECT_TRUE(sim.nodes().has("gear.r4"));
+  EXPECT_FALSE(sim.nodes().has("gear.r5"));
+  // growing the scene grows every property
+  sim.nodes().add(Vec3(9, 9, 0), 1.0);
+  EXPECT_EQ(sim.nodes().find<Vec3>("gear.r3")->size(), 6u);
+  // asking with another type is a programming error
+  EXPECT_THROW(sim.nodes().require<double>("gear.r2"), std::logic_error);
+}
+
+TEST(Topology, ChainsGrowAtEitherEnd) {
+  Simulation sim(2, 1);
+  Chain& c = sim.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)}, 1.0, false);
+  EXPECT_EQ(c.n_edges(), 2);
+  EXPECT_EQ(c.n_hinges(), 1);
+  int n = static_cast<int>(sim.nodes().add(Vec3(-1, 0, 0), 1.0));
+  c.grow_front(n, 1.0);
+  EXPECT_EQ(c.nodes.front(), n);
+  EXPECT_EQ(c.n_hinges(), 2);
+  EXPECT_THROW(sim.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1.0, false), InputError);
+  EXPECT_THROW(sim.add_chain("z", {Vec3(0, 0, 0), Vec3(0, 0, 0)}, 1.0, false), InputError);
+}
+
+TEST(Regions, ContainmentOfCircleSphereBox) {
+  Simulation sim(3, 1);
+  auto& c = sim.add_region("c", "circle", P({{"radius", 2.0}, {"center", std::vector<double>{1, 0}}}));
+  EXPECT_TRUE(c.contains(Vec3(2.9, 0, 100)));  // a z-aligned cylinder in 3D
+  EXPECT_FALSE(c.contains(Vec3(3.1, 0, 0)));
+  auto& s = sim.add_region("s", "sphere", P({{"radius", 1.0}}));
+  EXPECT_TRUE(s.contains(Vec3(0.5, 0.5, 0.5)));
+  EXPECT_FALSE(s.contains(Vec3(0.6, 0.6, 0.6)));
+  auto& b = sim.add_region("b", "box", P({{"lo", std::vector<double>{0, 0, 0}}, {"hi", std::vector<double>{1, 2, 3}}}));
+  EXPECT_TRUE(b.contains(Vec3(0.5, 1.5, 2.5)));
+  EXPECT_FALSE(b.contains(Vec3(0.5, 2.5, 2.5)));
+  EXPECT_THROW(sim.add_region("bad", "box", P({{"lo", std::vector<double>{1, 0, 0}}, {"hi", std::vector<double>{0, 1, 1}}})),
+               InputError);
+  EXPECT_THROW(sim.add_region("c", "sphere", P({{"radius", 1.0}})), InputError);
+}
+
+TEST(Computes, EnergyAndCount) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", wiggly_chain(6, 2, 4), 2.0, false);
+  sim.add_bond("spring", P({{"k", 10.0}}));
+  sim.add_bond("bend2d", P({{"k", 3.0}}));
+  sim.add_compute("e", "energy", {});
+  sim.add_compute("n", "count", {});
+  for (auto& v : sim.nodes().v) v = Vec3(1, 0, 0);
+  sim.compute_forces();
+  EXPECT_NEAR(sim.column("e.kinetic"), 0.5 * 2.0 * 6, 1e-12);
+  EXPECT_NEAR(sim.column("e.total"), 6.0 + sim.column("e.stretch") + sim.column("e.bend"), 1e-12);
+  EXPECT_GT(sim.column("e.bend"), 0.0);
+  EXPECT_EQ(sim.column("e.contact"), 0.0);
+  EXPECT_EQ(sim.column("n.nodes"), 6.0);
+  EXPECT_EQ(sim.column("n.edges"), 5.0);
+  EXPECT_THROW(sim.column("n.bogus"), InputError);
+  EXPECT_THROW(sim.column("bogus"), InputError);
+}
+
+TEST(Simulation, TwoScenesInOneProcessAreIndependent) {
+  auto make = [](std::uint64_t seed) {
+    auto s = std::make_unique<Simulation>(2, seed);
+    s->verbose = false;
+    auto pts = wiggly_chain(20, 2, 1, 0.0);
+    std::uniform_real_distribution<double> u(-0.05, 0.05);
+    for (auto& p : pts) p.y() += u(s->rng());
+    s->add_chain("w", pts, 1.0, false);
+    s->add_bond("spring", P({{"k", 100.0}}));
+    s->add_bond("bend2d", P({{"k", 5.0}}));
+    s->set_integrator("gear", P({{"dt", 0.005}}));
+    return s;
+  };
+  auto a = make(1), b = make(1), c = make(2);
+  a->run(RunOptions{200, 0, {}});
+  c->run(RunOptions{200, 0, {}});  // interleaved: must not disturb a or b
+  b->run(RunOptions{200, 0, {}});
+  for (size_t i = 0; i < 20; ++i) EXPECT_EQ(a->nodes().x[i], b->nodes().x[i]);
+  EXPECT_NE(a->nodes().x[5], c->nodes().x[5]);
+}
+
+TEST(Guard, CatchesNonFiniteForceAndNamesAStableDt) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.guard.last_good_file = "guard_test_last_good.h5";
+  sim.add_chain("w", wiggly_chain(10, 2, 2, 0.1), 1.0, false);
+  sim.add_bond("spring", P({{"k", 1000.0}}));
+  sim.nodes().v[4] = Vec3(0.01, 0.02, 0);  // rest lengths come from the start: kick it
+  sim.set_integrator("verlet", P({{"dt", 0.2}}));  // omega dt = 13: unstable
+  try {
+    sim.run(RunOptions{100000, 0, {}});
+    FAIL() << "no instability detected";
+  } catch (const InstabilityError& e) {
+    std::string m = e.what();
+    EXPECT_NE(m.find("instability at step"), std::string::npos) << m;
+    EXPECT_NE(m.find("rerun with dt <="), std::string::npos) << m;
+    EXPECT_LT(sim.step, 100);  // caught within a few checks, not after a long NaN run
+  }
+  std::remove("guard_test_last_good.h5");
+}
+
+TEST(Guard, NodeLeavingEveryBoundingRegionStopsTheRun) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.guard.last_good_file = "guard_test_bounds.h5";
+  sim.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1.0, false);
+  sim.add_bond("spring", P({{"k", 1.0}}));
+  sim.add_region("box", "box", P({{"lo", std::vector<double>{-1, -1}}, {"hi", std::vector<double>{3, 1}}}));
+  EXPECT_THROW(sim.add_region("b2", "sphere", P({{"radius", -1.0}})), InputError);
+  sim.add_region("domain", "sphere", P({{"radius", 2.0}, {"bounds", true}}));
+  sim.set_group("end", {1});
+  sim.add_fix("push", "force/constant", P({{"group", std::string("end")}, {"force", std::vector<double>{5, 0}}}));
+  sim.set_integrator("verlet", P({{"dt", 0.01}}));
+  try {
+    sim.run(RunOptions{100000, 0, {}});
+    FAIL() << "the node left the domain unnoticed";
+  } catch (const InstabilityError& e) {
+    EXPECT_NE(std::string(e.what()).find("left every bounding region"), std::string::npos) << e.what();
+  }
+  std::remove("guard_test_bounds.h5");
+}
+
+TEST(StableDt, AutoUsesTheIntegratorLimit) {
+  for (auto [style, limit] : {std::pair<const char*, double>{"verlet", 2.0}, {"gear", 0.42}}) {
+    Simulation sim(2, 1);
+    sim.verbose = false;
+    sim.add_chain("w", wiggly_chain(5, 2, 1, 0.0), 1.0, false);
+    sim.add_bond("spring", P({{"k", 400.0}}));
+    sim.set_integrator(style, P({{"safety", 0.5}}));
+    sim.run(RunOptions{1, 0, {}});
+    EXPECT_NEAR(sim.dt, 0.5 * limit / 40.0, 1e-12) << style;  // omega_max = 2 sqrt(400)
+  }
+}
+
+#ifdef SLENDER_HAVE_HDF5
+TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
+  const std::string file = "test_dump.h5";
+  {
+    Simulation sim(2, 3);
+    sim.verbose = false;
+    sim.add_chain("w", wiggly_chain(7, 2, 3), 1.0, false);
+    sim.add_bond("spring", P({{"k", 50.0}}));
+    sim.set_integrator("verlet", P({{"dt", 0.01}}));
+    sim.add_dump("d", "h5md", P({{"file", file}, {"every", 10.0}, {"fields", std::vector<std::string>{"position", "velocity"}}}));
+    sim.run(RunOptions{50, 0, {}});
+    EXPECT_THROW(sim.add_dump("e", "h5md", P({{"file", std::string("x.h5")}, {"every", 1.0}, {"fields", std::vector<std::string>{"torque"}}})),
+                 InputError);
+  }
+  auto f = h5::open_file(file, false);
+  std::vector<hsize_t> dims;
+  auto pos = h5::read_doubles(f, "particles/all/position/value", &dims);
+  ASSERT_EQ(dims.size(), 3u);
+  EXPECT_EQ(dims[0], 6u);  // steps 0, 10, ..., 50
+  EXPECT_EQ(dims[1], 7u);
+  EXPECT_EQ(dims[2], 2u);
+  for (double v : pos) EXPECT_TRUE(std::isfinite(v));
+  auto steps = h5::read_doubles(f, "particles/all/position/step");
+  EXPECT_EQ(steps.back(), 50.0);
+  std::vector<hsize_t> edims;
+  h5::read_doubles(f, "connectivity/edges/value", &edims);
+  EXPECT_EQ(edims[1], 6u);
+  std::ifstream x(file + ".xdmf");
+  std::stringstream ss;
+  ss << x.rdbuf();
+  EXPECT_NE(ss.str().find("Polyline"), std::string::npos);
+  EXPECT_NE(ss.str().find("test_dump.h5:/particles/all/velocity/value"), std::string::npos);
+  std::remove(file.c_str());
+  std::remove((file + ".xdmf").c_str());
+}
+
+TEST(Checkpoint, RestartIsBitIdenticalAndRejectsOtherScenes) {
+  auto make = [] {
+    auto s = std::make_unique<Simulation>(2, 9);
+    s->verbose = false;
+    s->add_chain("w", wiggly_chain(15, 2, 8, 0.2), 1.0, false);
+    s->add_bond("spring", P({{"k", 200.0}}));
+    s->add_bond("bend2d", P({{"k", 8.0}}));
+    s->set_integrator("gear", P({{"values", 6.0}, {"dt", 0.004}}));
+    return s;
+  };
+  auto a = make();
+  a->run(RunOptions{100, 0, {}});
+  a->write_checkpoint("test_ck.h5");
+  a->run(RunOptions{100, 0, {}});
+  auto b = make();
+  b->read_checkpoint("test_ck.h5");
+  b->run(RunOptions{100, 0, {}});
+  for (size_t i = 0; i < 15; ++i) EXPECT_EQ(a->nodes().x[i], b->nodes().x[i]);
+  // a scene with other node properties cannot take this checkpoint
+  Simulation other(2, 9);
+  other.add_chain("w", wiggly_chain(15, 2, 8, 0.2), 1.0, false);
+  other.set_integrator("verlet", P({{"dt", 0.01}}));
+  EXPECT_THROW(other.read_checkpoint("test_ck.h5"), InputError);
+  EXPECT_THROW(other.read_checkpoint("does_not_exist.h5"), InputError);
+  std::remove("test_ck.h5");
+}
+#endif

@@ -1,0 +1,100 @@
+// Unit tests of the fix styles: walls, constant force, clamp, viscous damping.
+#include <cmath>
+
+#include "helpers.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+TEST(SphereWallFix, ForceMatchesEnergyGradientInside) {
+  for (double p : {1.0, 2.0}) {
+    Simulation sim(3, 1);
+    // nodes near and beyond a sphere of radius 3 centred at (0.5, 0, 0)
+    sim.add_chain("w", {Vec3(3.2, 0.3, 0.1), Vec3(0.5, 3.4, 0.2), Vec3(0.1, 0.2, 0.3), Vec3(-2.3, -0.4, 1.2)},
+                  1.0, false);
+    sim.add_fix("wall", "wall/sphere",
+                P({{"radius", 3.0}, {"stiffness", 50.0}, {"exponent", p}, {"diameter", 1.0},
+                   {"center", std::vector<double>{0.5, 0, 0}}}));
+    sim.compute_forces();
+    EXPECT_GT(sim.energies().at("external"), 0.0) << p;
+    EXPECT_LT(fd_force_error(sim), 1e-6) << p;
+    // the node at the centre region feels nothing; the overlapping ones are pushed inward
+    EXPECT_EQ(sim.nodes().f[2].norm(), 0.0);
+    EXPECT_LT(sim.nodes().f[1].y(), 0.0);
+    EXPECT_DOUBLE_EQ(sim.fix("wall").value("contacts"), 3.0);
+  }
+}
+
+TEST(SphereWallFix, QuadraticLawValueAndOutsideSide) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", {Vec3(10.2, 0, 0), Vec3(0, 0, 0)}, 1.0, false);
+  sim.add_fix("cavity", "wall/circle",
+              P({{"radius", 10.0}, {"stiffness", 1e4}, {"exponent", 2.0}, {"diameter", 1.0}}));
+  sim.compute_forces();
+  // overlap = 10.2 + 0.5 - 10 = 0.7 -> F = k 0.49 along -x (MODELS.md §2.3)
+  EXPECT_NEAR(sim.nodes().f[0].x(), -1e4 * 0.49, 1e-8);
+  Simulation out(2, 1);
+  out.add_chain("w", {Vec3(1.2, 0, 0), Vec3(5, 0, 0)}, 1.0, false);
+  out.add_fix("post", "wall/circle",
+              P({{"radius", 1.0}, {"stiffness", 10.0}, {"side", std::string("outside")}}));
+  out.compute_forces();
+  EXPECT_EQ(out.nodes().f[0].norm(), 0.0);  // at 1.2 > R, no overlap with a zero diameter
+  out.nodes().x[0] = Vec3(0.8, 0, 0);
+  out.compute_forces();
+  EXPECT_NEAR(out.nodes().f[0].x(), 10.0 * 0.2, 1e-12);  // pushed outward
+  EXPECT_LT(fd_force_error(out), 1e-6);
+}
+
+TEST(ConstantForceFix, EnergyIsMinusWorkAndRampsInTime) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", wiggly_chain(4, 2, 3), 1.0, false);
+  sim.set_group("ends", {0, 3});
+  sim.add_fix("load", "force/constant",
+              P({{"group", std::string("ends")}, {"force", std::vector<double>{1.0, -2.0}},
+                 {"rate", std::vector<double>{0.5, 0.0}}}));
+  sim.nodes().x[0] += Vec3(0.3, 0.1, 0);
+  EXPECT_LT(fd_force_error(sim), 1e-6);
+  sim.compute_forces();
+  EXPECT_NEAR(sim.energies().at("external"), -(1.0 * 0.3 - 2.0 * 0.1), 1e-12);
+  EXPECT_EQ(sim.nodes().f[1].norm(), 0.0);
+  sim.time = 2.0;
+  sim.compute_forces();
+  EXPECT_NEAR(sim.nodes().f[3].x(), 1.0 + 0.5 * 2.0, 1e-12);
+  EXPECT_THROW(sim.add_fix("x", "force/constant", P({{"group", std::string("nope")}, {"force", std::vector<double>{1, 0}}})),
+               InputError);
+}
+
+TEST(ClampFix, ClampedComponentsNeverMove) {
+  Simulation sim(2, 7);
+  sim.verbose = false;
+  sim.add_chain("w", wiggly_chain(12, 2, 9, 0.2), 1.0, false);
+  sim.add_bond("spring", P({{"k", 100.0}}));
+  sim.add_bond("bend2d", P({{"k", 10.0}}));
+  sim.set_group("first", {0});
+  sim.set_group("last", {11});
+  sim.add_fix("root", "clamp", P({{"group", std::string("first")}, {"rotation", true}}));
+  sim.add_fix("slide", "clamp", P({{"group", std::string("last")}, {"components", std::string("y")}}));
+  const Vec3 x0 = sim.nodes().x[0], x1 = sim.nodes().x[1], x11 = sim.nodes().x[11];
+  for (auto* integ : {"verlet", "gear", "fire"}) {
+    sim.set_integrator(integ, P({{"dt", 0.005}}));
+    sim.run(RunOptions{500, 0, {}});
+    EXPECT_EQ(sim.nodes().x[0], x0) << integ;
+    EXPECT_EQ(sim.nodes().x[1], x1) << integ << ": rotation clamp holds the neighbour";
+    EXPECT_EQ(sim.nodes().x[11].y(), x11.y()) << integ;
+  }
+  EXPECT_NE(sim.nodes().x[11].x(), x11.x());  // the free component did move
+  EXPECT_THROW(sim.add_fix("bad", "clamp", P({{"group", std::string("first")}, {"components", std::string("xw")}})),
+               InputError);
+}
+
+TEST(ViscousDampingFix, ForceIsMinusGammaV) {
+  Simulation sim(3, 1);
+  sim.add_chain("w", wiggly_chain(3, 3, 1), 2.0, false);
+  sim.nodes().v[1] = Vec3(1, -2, 3);
+  sim.add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
+  for (auto& f : sim.fixes()) f->setup(sim);
+  sim.nodes().f[1].setZero();
+  sim.fix("drag").post_force(sim);
+  EXPECT_EQ(sim.nodes().f[1], Vec3(-0.5, 1.0, -1.5));
+  EXPECT_NEAR(sim.fix("drag").max_frequency(sim), 0.25, 1e-15);
+}

@@ -74,6 +74,12 @@ std::string ParamDecl::range_text() const {
   return r;
 }
 
+std::string ParamDecl::default_text() const {
+  if (is_required) return "required";
+  if (std::holds_alternative<std::monostate>(default_value)) return "optional";
+  return value_text(default_value);
+}
+
 ParamDecl& ParamSpec::add(const std::string& key, ParamType t, const std::string& help) {
   decls.push_back(ParamDecl{});
   decls.back().name = key;
@@ -193,9 +199,8 @@ std::string ParamSpec::help_text() const {
   if (decls.empty()) os << "  (no parameters)\n";
   for (auto& d : decls) {
     os << "  " << d.name << " (" << type_name(d.type) << ", ";
-    if (d.is_required) os << "required";
-    else if (std::holds_alternative<std::monostate>(d.default_value)) os << "optional";
-    else os << "default " << value_text(d.default_value);
+    if (d.is_required || std::holds_alternative<std::monostate>(d.default_value)) os << d.default_text();
+    else os << "default " << d.default_text();
     auto r = d.range_text();
     if (!r.empty()) os << ", " << r;
     os << "): " << d.help << "\n";

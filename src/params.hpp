@@ -69,6 +69,8 @@ struct ParamDecl {
     return *this;
   }
   std::string range_text() const;
+  // "required", "optional" or the default value as a deck would write it.
+  std::string default_text() const;
 };
 
 class ParamValues;

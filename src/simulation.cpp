@@ -350,8 +350,8 @@ void Simulation::fail(const std::string& what, long bad_step) {
     double limit = suggest_dt(1.0);
     if (dt > limit)
       os << " The time step dt = " << dt << " is above the stable limit " << limit
-         << " of integrator " << integrator_->style_name() << " (stiffest mode: " << who
-         << ", omega = " << w << "); rerun with dt <= " << suggest_dt(0.5)
+         << " of integrator " << integrator_->style_name() << " (stiffest term: " << who
+         << ", combined omega_max = " << w << "); rerun with dt <= " << suggest_dt(0.5)
          << " or dt = \"auto\".";
     else
       os << " dt = " << dt << " is below the stable limit " << limit << " of the stiff terms ("
@@ -523,7 +523,6 @@ long Simulation::minimize(double ftol, long max_steps) {
   integrator_ = Registry<IntegratorStyle>::create("fire", *this, p);
   integrator_->set_id("minimize");
   long taken = 0;
-  bool old_verbose = verbose;
   try {
     setup_run();
     if (thermo.every > 0) write_thermo(true);
@@ -538,11 +537,9 @@ long Simulation::minimize(double ftol, long max_steps) {
     if (thermo.every > 0 && step % thermo.every != 0) write_thermo(false);
     for (auto& d : dumps_) d->flush();
   } catch (...) {
-    verbose = old_verbose;
     integrator_ = std::move(saved);
     throw;
   }
-  verbose = old_verbose;
   for (auto& v : nodes_.v) v.setZero();
   ++state_epoch;
   integrator_ = std::move(saved);
@@ -554,11 +551,13 @@ long Simulation::minimize(double ftol, long max_steps) {
 }
 
 #ifndef SLENDER_HAVE_HDF5
-void Simulation::write_checkpoint(const std::string&) {
-  throw InputError("checkpoints need HDF5: this slender was built with -DSLENDER_WITH_HDF5=OFF");
+void Simulation::write_checkpoint(const std::string& path) {
+  throw InputError("cannot write checkpoint '" + path +
+                   "': this slender was built with -DSLENDER_WITH_HDF5=OFF");
 }
-void Simulation::read_checkpoint(const std::string&) {
-  throw InputError("checkpoints need HDF5: this slender was built with -DSLENDER_WITH_HDF5=OFF");
+void Simulation::read_checkpoint(const std::string& path) {
+  throw InputError("cannot read checkpoint '" + path +
+                   "': this slender was built with -DSLENDER_WITH_HDF5=OFF");
 }
 #endif
 

@@ -105,8 +105,9 @@ void Simulation::read_checkpoint(const std::string& path) {
   for (auto& name : names) {
     PropertyBase* p = nodes_.find_any(name);
     if (!p)
-      throw InputError("checkpoint '" + path + "' has node property '" + name +
-                       "' that this scene does not use: the deck differs from the one that wrote it");
+      throw InputError(
+          "checkpoint '" + path + "' has node property '" + name +
+          "' that this scene does not use: the deck differs from the one that wrote it");
     p->from_flat(h5::read_doubles(props, name));
   }
   for (auto& [name, p] : nodes_.properties())

@@ -31,12 +31,13 @@ Handle create_group(hid_t parent, const std::string& name) {
                  "cannot create group " + name);
 }
 Handle open_group(hid_t parent, const std::string& name) {
-  return checked(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose,
-                 "missing group " + name);
+  return checked(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose, "missing group " + name);
 }
 bool exists(hid_t parent, const std::string& name) {
   htri_t r;
-  H5E_BEGIN_TRY { r = H5Lexists(parent, name.c_str(), H5P_DEFAULT); }
+  H5E_BEGIN_TRY {
+    r = H5Lexists(parent, name.c_str(), H5P_DEFAULT);
+  }
   H5E_END_TRY;
   return r > 0;
 }
@@ -45,8 +46,8 @@ std::vector<std::string> children(hid_t group) {
   H5G_info_t info;
   check(H5Gget_info(group, &info), "group info");
   for (hsize_t i = 0; i < info.nlinks; ++i) {
-    ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
-                                     H5P_DEFAULT);
+    ssize_t len =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
     std::string s(static_cast<size_t>(len), '\0');
     H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, s.data(), len + 1, H5P_DEFAULT);
     out.push_back(s);
@@ -68,8 +69,8 @@ void write_doubles(hid_t parent, const std::string& name, const std::vector<doub
 
 std::vector<double> read_doubles(hid_t parent, const std::string& name,
                                  std::vector<hsize_t>* dims_out) {
-  Handle ds = checked(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose,
-                      "missing dataset " + name);
+  Handle ds =
+      checked(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "missing dataset " + name);
   Handle space = checked(H5Dget_space(ds), H5Sclose, "dataspace of " + name);
   int rank = H5Sget_simple_extent_ndims(space);
   std::vector<hsize_t> dims(static_cast<size_t>(rank));
@@ -77,8 +78,9 @@ std::vector<double> read_doubles(hid_t parent, const std::string& name,
   size_t n = 1;
   for (auto d : dims) n *= d;
   std::vector<double> out(n);
-  if (n) check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
-               "read " + name);
+  if (n)
+    check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+          "read " + name);
   if (dims_out) *dims_out = dims;
   return out;
 }
@@ -99,8 +101,8 @@ void attr_string(hid_t obj, const std::string& name, const std::string& value) {
   H5Tset_size(type, value.size() + 1);
   H5Tset_strpad(type, H5T_STR_NULLTERM);
   Handle space = checked(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
-  Handle a = checked(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
-                     H5Aclose, "attribute " + name);
+  Handle a = checked(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                     "attribute " + name);
   check(H5Awrite(a, type, value.c_str()), "write attribute " + name);
 }
 void attr_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
@@ -112,8 +114,8 @@ void attr_strings(hid_t obj, const std::string& name, const std::vector<std::str
   H5Tset_size(type, len);
   hsize_t n = values.size();
   Handle space = checked(H5Screate_simple(1, &n, nullptr), H5Sclose, "space");
-  Handle a = checked(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
-                     H5Aclose, "attribute " + name);
+  Handle a = checked(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                     "attribute " + name);
   check(H5Awrite(a, type, buf.data()), "write attribute " + name);
 }
 void attr_ints(hid_t obj, const std::string& name, const std::vector<int>& values) {
@@ -137,7 +139,8 @@ TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool in
     : ncomp_(ncomp), integer_(integer) {
   group_ = create_group(parent, name);
   auto make = [&](const char* nm, hid_t type, int rank, const hsize_t* chunk) {
-    std::vector<hsize_t> zero(static_cast<size_t>(rank), 0), maxd(static_cast<size_t>(rank), H5S_UNLIMITED);
+    std::vector<hsize_t> zero(static_cast<size_t>(rank), 0),
+        maxd(static_cast<size_t>(rank), H5S_UNLIMITED);
     if (rank == 3) maxd[2] = static_cast<hsize_t>(ncomp_);
     Handle space = checked(H5Screate_simple(rank, zero.data(), maxd.data()), H5Sclose, "space");
     Handle plist = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "plist");

@@ -23,7 +23,9 @@ struct DeckContext {
   bool instability = false;
   std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
 };
-DeckContext*& context(lua_State* L) { return *static_cast<DeckContext**>(lua_getextraspace(L)); }
+DeckContext*& context(lua_State* L) {
+  return *static_cast<DeckContext**>(lua_getextraspace(L));
+}
 
 // An error whose message already names the deck line (e.g. from a callback).
 struct LocatedError : std::runtime_error {
@@ -36,25 +38,31 @@ struct SimBox {
 
 Simulation& sim_arg(lua_State* L, int idx = 1) {
   auto* box = static_cast<SimBox*>(luaL_testudata(L, idx, kSimMeta));
-  if (!box || !box->sim) throw InputError("expected a simulation (use sim:method(...), not sim.method(...))");
+  if (!box || !box->sim)
+    throw InputError("expected a simulation (use sim:method(...), not sim.method(...))");
   return *box->sim;
 }
 
 std::string str_arg(lua_State* L, int idx, const char* what) {
-  if (lua_type(L, idx) != LUA_TSTRING) throw InputError(std::string("expected a string for ") + what);
+  if (lua_type(L, idx) != LUA_TSTRING)
+    throw InputError(std::string("expected a string for ") + what);
   return lua_tostring(L, idx);
 }
 double num_arg(lua_State* L, int idx, const char* what) {
-  if (lua_type(L, idx) != LUA_TNUMBER) throw InputError(std::string("expected a number for ") + what);
+  if (lua_type(L, idx) != LUA_TNUMBER)
+    throw InputError(std::string("expected a number for ") + what);
   return lua_tonumber(L, idx);
 }
 
 // Lua value -> raw parameter value (numbers, booleans, strings, flat lists).
 Value to_value(lua_State* L, int idx, const std::string& key) {
   switch (lua_type(L, idx)) {
-    case LUA_TNUMBER: return lua_tonumber(L, idx);
-    case LUA_TBOOLEAN: return static_cast<bool>(lua_toboolean(L, idx));
-    case LUA_TSTRING: return std::string(lua_tostring(L, idx));
+    case LUA_TNUMBER:
+      return lua_tonumber(L, idx);
+    case LUA_TBOOLEAN:
+      return static_cast<bool>(lua_toboolean(L, idx));
+    case LUA_TSTRING:
+      return std::string(lua_tostring(L, idx));
     case LUA_TTABLE: {
       idx = lua_absindex(L, idx);
       const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
@@ -62,8 +70,10 @@ Value to_value(lua_State* L, int idx, const std::string& key) {
       std::vector<std::string> strs;
       for (lua_Integer i = 1; i <= n; ++i) {
         lua_rawgeti(L, idx, i);
-        if (lua_type(L, -1) == LUA_TNUMBER) nums.push_back(lua_tonumber(L, -1));
-        else if (lua_type(L, -1) == LUA_TSTRING) strs.push_back(lua_tostring(L, -1));
+        if (lua_type(L, -1) == LUA_TNUMBER)
+          nums.push_back(lua_tonumber(L, -1));
+        else if (lua_type(L, -1) == LUA_TSTRING)
+          strs.push_back(lua_tostring(L, -1));
         else {
           lua_pop(L, 1);
           throw InputError("key '" + key + "': lists may hold only numbers or only strings");
@@ -114,8 +124,8 @@ RawParams to_raw(lua_State* L, int idx, const std::vector<std::string>& skip = {
 int node_index(long i, size_t n, const std::string& what) {
   long k = i > 0 ? i - 1 : static_cast<long>(n) + i;
   if (i == 0 || k < 0 || k >= static_cast<long>(n))
-    throw InputError(what + ": node index " + std::to_string(i) + " out of range 1.." + std::to_string(n) +
-                     " (or -1..-" + std::to_string(n) + ")");
+    throw InputError(what + ": node index " + std::to_string(i) + " out of range 1.." +
+                     std::to_string(n) + " (or -1..-" + std::to_string(n) + ")");
   return static_cast<int>(k);
 }
 
@@ -130,16 +140,21 @@ ParamSpec simulation_spec() {
 }
 
 ParamSpec wire_spec() {
-  ParamSpec s("command", "wire", "sim:wire{...}: a chain of nodes (straight, circular or from points)");
+  ParamSpec s("command", "wire",
+              "sim:wire{...}: a chain of nodes (straight, circular or from points)");
   s.string("name", "chain name (also a node group)").required();
   s.integer("nodes", "number of nodes").min(2);
   s.real("spacing", "rest length of each edge").def(1.0).positive();
   s.vector("start", "first node (or circle centre)").def(std::vector<double>{0, 0, 0}).length(2, 3);
-  s.vector("direction", "direction of a straight wire").def(std::vector<double>{1, 0, 0}).length(2, 3);
+  s.vector("direction", "direction of a straight wire")
+      .def(std::vector<double>{1, 0, 0})
+      .length(2, 3);
   s.real("radius", "place the nodes on a closed circle of this radius in the xy plane").positive();
   s.boolean("closed", "connect the last node to the first").def(false);
   s.real("mass", "mass of each node").def(1.0).positive();
-  s.real("perturb", "random displacement amplitude normal to the wire (seeded)").def(0.0).nonnegative();
+  s.real("perturb", "random displacement amplitude normal to the wire (seeded)")
+      .def(0.0)
+      .nonnegative();
   s.vector("points", "explicit node positions {{x,y[,z]}, ...} (instead of nodes/spacing)");
   return s;
 }
@@ -169,7 +184,8 @@ ParamSpec guard_spec() {
   s.integer("every", "steps between checks (outputs are always checked)").def(10.0).min(1);
   s.real("max_step_fraction", "max |v| dt over the shortest rest length").def(0.5).positive();
   s.real("ke_factor", "max kinetic energy over the largest energy seen").def(100.0).positive();
-  s.string("last_good_file", "where the last good state is written").def(std::string("slender_last_good.h5"));
+  s.string("last_good_file", "where the last good state is written")
+      .def(std::string("slender_last_good.h5"));
   return s;
 }
 
@@ -177,7 +193,8 @@ ParamSpec run_spec() {
   ParamSpec s("command", "run", "sim:run{...} or sim:run(steps)");
   s.integer("steps", "number of steps").required().min(0);
   s.integer("every", "steps between callback calls").def(0.0).min(0);
-  s.add("callback", ParamType::String, "function(sim) called every `every` steps; return true to stop");
+  s.add("callback", ParamType::String,
+        "function(sim) called every `every` steps; return true to stop");
   return s;
 }
 
@@ -222,8 +239,10 @@ std::vector<Vec3> read_points(lua_State* L, int tbl) {
       if (ok) {
         for (int c = 0; c < 3; ++c) {
           lua_rawgeti(L, -1, c + 1);
-          if (lua_type(L, -1) == LUA_TNUMBER) p[c] = lua_tonumber(L, -1);
-          else if (c < 2) ok = false;
+          if (lua_type(L, -1) == LUA_TNUMBER)
+            p[c] = lua_tonumber(L, -1);
+          else if (c < 2)
+            ok = false;
           lua_pop(L, 1);
         }
       }
@@ -288,11 +307,13 @@ int l_group(lua_State* L) {
     Chain* c = sim.topology().find(p.str("chain"));
     if (!c) throw InputError("group '" + name + "': unknown chain '" + p.str("chain") + "'");
     if (p.has("nodes"))
-      for (long i : p.integers("nodes")) sel.push_back(c->nodes[node_index(i, c->nodes.size(), "group " + name)]);
+      for (long i : p.integers("nodes"))
+        sel.push_back(c->nodes[node_index(i, c->nodes.size(), "group " + name)]);
     else
       sel = c->nodes;
   } else if (p.has("nodes")) {
-    for (long i : p.integers("nodes")) sel.push_back(node_index(i, sim.nodes().size(), "group " + name));
+    for (long i : p.integers("nodes"))
+      sel.push_back(node_index(i, sim.nodes().size(), "group " + name));
   } else {
     sel = sim.group("all");
   }
@@ -338,7 +359,8 @@ int l_unfix(lua_State* L) {
 }
 int l_compute(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  sim.add_compute(str_arg(L, 2, "the compute id"), str_arg(L, 3, "the compute style"), to_raw(L, 4));
+  sim.add_compute(str_arg(L, 2, "the compute id"), str_arg(L, 3, "the compute style"),
+                  to_raw(L, 4));
   return 0;
 }
 int l_dump(lua_State* L) {
@@ -464,22 +486,26 @@ int push_vec(lua_State* L, const Vec3& v, int dim) {
 }
 int l_position(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "position");
+  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(),
+                     "position");
   return push_vec(L, sim.nodes().x[i], sim.dimension());
 }
 int l_velocity(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "velocity");
+  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(),
+                     "velocity");
   return push_vec(L, sim.nodes().v[i], sim.dimension());
 }
 int l_force(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "force");
+  int i =
+      node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "force");
   return push_vec(L, sim.nodes().f[i], sim.dimension());
 }
 int l_set_position(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "set_position");
+  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(),
+                     "set_position");
   Value v = to_value(L, 3, "position");
   auto* d = std::get_if<std::vector<double>>(&v);
   if (!d || d->size() < 2 || d->size() > 3) throw InputError("set_position: expected {x, y[, z]}");
@@ -494,7 +520,8 @@ int l_chain_node(lua_State* L) {
   std::string name = str_arg(L, 2, "the chain name");
   Chain* c = sim.topology().find(name);
   if (!c) throw InputError("unknown chain '" + name + "'");
-  int k = node_index(static_cast<long>(num_arg(L, 3, "the index along the chain")), c->nodes.size(), name);
+  int k = node_index(static_cast<long>(num_arg(L, 3, "the index along the chain")), c->nodes.size(),
+                     name);
   lua_pushinteger(L, c->nodes[k] + 1);
   return 1;
 }
@@ -549,8 +576,10 @@ int l_var(lua_State* L) {
   }
   // numbers arrive as numbers; "true"/"false" as booleans; the rest as strings
   if (lua_stringtonumber(L, it->second.c_str()) == 0) {
-    if (it->second == "true" || it->second == "false") lua_pushboolean(L, it->second == "true");
-    else lua_pushstring(L, it->second.c_str());
+    if (it->second == "true" || it->second == "false")
+      lua_pushboolean(L, it->second == "true");
+    else
+      lua_pushstring(L, it->second.c_str());
   }
   return 1;
 }
@@ -623,47 +652,44 @@ int guarded(lua_State* L) {
   return 0;
 }
 
-#define SLENDER_METHOD(name, fn) {name, guarded<fn>}
+#define SLENDER_METHOD(name, fn) \
+  { name, guarded<fn> }
 
-const luaL_Reg kSimMethods[] = {
-    SLENDER_METHOD("wire", l_wire),
-    SLENDER_METHOD("group", l_group),
-    SLENDER_METHOD("region", l_region),
-    SLENDER_METHOD("bond", l_bond),
-    SLENDER_METHOD("pair", l_pair),
-    SLENDER_METHOD("fix", l_fix),
-    SLENDER_METHOD("unfix", l_unfix),
-    SLENDER_METHOD("compute", l_compute),
-    SLENDER_METHOD("dump", l_dump),
-    SLENDER_METHOD("integrator", l_integrator),
-    SLENDER_METHOD("modify", l_modify),
-    SLENDER_METHOD("thermo", l_thermo),
-    SLENDER_METHOD("guard", l_guard),
-    SLENDER_METHOD("run", l_run),
-    SLENDER_METHOD("minimize", l_minimize),
-    SLENDER_METHOD("value", l_value),
-    SLENDER_METHOD("position", l_position),
-    SLENDER_METHOD("velocity", l_velocity),
-    SLENDER_METHOD("force", l_force),
-    SLENDER_METHOD("set_position", l_set_position),
-    SLENDER_METHOD("chain_node", l_chain_node),
-    SLENDER_METHOD("nnodes", l_nnodes),
-    SLENDER_METHOD("step", l_step),
-    SLENDER_METHOD("time", l_time),
-    SLENDER_METHOD("dt", l_dt),
-    SLENDER_METHOD("suggest_dt", l_suggest_dt),
-    SLENDER_METHOD("properties", l_properties),
-    SLENDER_METHOD("write_checkpoint", l_write_checkpoint),
-    SLENDER_METHOD("read_checkpoint", l_read_checkpoint),
-    {nullptr, nullptr}};
+const luaL_Reg kSimMethods[] = {SLENDER_METHOD("wire", l_wire),
+                                SLENDER_METHOD("group", l_group),
+                                SLENDER_METHOD("region", l_region),
+                                SLENDER_METHOD("bond", l_bond),
+                                SLENDER_METHOD("pair", l_pair),
+                                SLENDER_METHOD("fix", l_fix),
+                                SLENDER_METHOD("unfix", l_unfix),
+                                SLENDER_METHOD("compute", l_compute),
+                                SLENDER_METHOD("dump", l_dump),
+                                SLENDER_METHOD("integrator", l_integrator),
+                                SLENDER_METHOD("modify", l_modify),
+                                SLENDER_METHOD("thermo", l_thermo),
+                                SLENDER_METHOD("guard", l_guard),
+                                SLENDER_METHOD("run", l_run),
+                                SLENDER_METHOD("minimize", l_minimize),
+                                SLENDER_METHOD("value", l_value),
+                                SLENDER_METHOD("position", l_position),
+                                SLENDER_METHOD("velocity", l_velocity),
+                                SLENDER_METHOD("force", l_force),
+                                SLENDER_METHOD("set_position", l_set_position),
+                                SLENDER_METHOD("chain_node", l_chain_node),
+                                SLENDER_METHOD("nnodes", l_nnodes),
+                                SLENDER_METHOD("step", l_step),
+                                SLENDER_METHOD("time", l_time),
+                                SLENDER_METHOD("dt", l_dt),
+                                SLENDER_METHOD("suggest_dt", l_suggest_dt),
+                                SLENDER_METHOD("properties", l_properties),
+                                SLENDER_METHOD("write_checkpoint", l_write_checkpoint),
+                                SLENDER_METHOD("read_checkpoint", l_read_checkpoint),
+                                {nullptr, nullptr}};
 
 const luaL_Reg kModule[] = {
-    SLENDER_METHOD("simulation", l_simulation),
-    SLENDER_METHOD("var", l_var),
-    SLENDER_METHOD("clock", l_clock),
-    SLENDER_METHOD("result", l_result),
-    SLENDER_METHOD("styles", l_styles),
-    {nullptr, nullptr}};
+    SLENDER_METHOD("simulation", l_simulation), SLENDER_METHOD("var", l_var),
+    SLENDER_METHOD("clock", l_clock),           SLENDER_METHOD("result", l_result),
+    SLENDER_METHOD("styles", l_styles),         {nullptr, nullptr}};
 
 int open_module(lua_State* L) {
   luaL_newlib(L, kModule);

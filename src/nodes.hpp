@@ -170,9 +170,7 @@ class NodeStore {
     for (auto& [k, p] : props_) out.push_back(k);
     return out;
   }
-  const std::map<std::string, std::unique_ptr<PropertyBase>>& properties() const {
-    return props_;
-  }
+  const std::map<std::string, std::unique_ptr<PropertyBase>>& properties() const { return props_; }
 
   std::vector<Vec3> x, v, f;
   std::vector<double> mass;

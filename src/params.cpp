@@ -7,14 +7,22 @@ namespace slender {
 
 const char* type_name(ParamType t) {
   switch (t) {
-    case ParamType::Real: return "number";
-    case ParamType::Int: return "integer";
-    case ParamType::Bool: return "boolean";
-    case ParamType::String: return "string";
-    case ParamType::Vector: return "vector of numbers";
-    case ParamType::RealOrAuto: return "number or \"auto\"";
-    case ParamType::StringList: return "list of strings";
-    case ParamType::IntList: return "list of integers";
+    case ParamType::Real:
+      return "number";
+    case ParamType::Int:
+      return "integer";
+    case ParamType::Bool:
+      return "boolean";
+    case ParamType::String:
+      return "string";
+    case ParamType::Vector:
+      return "vector of numbers";
+    case ParamType::RealOrAuto:
+      return "number or \"auto\"";
+    case ParamType::StringList:
+      return "list of strings";
+    case ParamType::IntList:
+      return "list of integers";
   }
   return "?";
 }
@@ -29,12 +37,18 @@ std::string fmt(double v) {
 
 const char* value_kind(const Value& v) {
   switch (v.index()) {
-    case 0: return "nil";
-    case 1: return "number";
-    case 2: return "boolean";
-    case 3: return "string";
-    case 4: return "list of numbers";
-    case 5: return "list of strings";
+    case 0:
+      return "nil";
+    case 1:
+      return "number";
+    case 2:
+      return "boolean";
+    case 3:
+      return "string";
+    case 4:
+      return "list of numbers";
+    case 5:
+      return "list of strings";
   }
   return "?";
 }
@@ -100,15 +114,16 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
     if (!find(key)) {
       std::string known;
       for (auto& d : decls) known += (known.empty() ? "" : ", ") + d.name;
-      throw InputError(who + ": unknown key '" + key + "' (known keys: " +
-                       (known.empty() ? "none" : known) + ")");
+      throw InputError(who + ": unknown key '" + key +
+                       "' (known keys: " + (known.empty() ? "none" : known) + ")");
     }
   }
   std::map<std::string, Value> out;
   for (auto& d : decls) {
     auto it = raw.find(d.name);
     if (it == raw.end() || std::holds_alternative<std::monostate>(it->second)) {
-      if (d.is_required) throw InputError(who + ": missing required key '" + d.name + "' (" + d.help + ")");
+      if (d.is_required)
+        throw InputError(who + ": missing required key '" + d.name + "' (" + d.help + ")");
       if (!std::holds_alternative<std::monostate>(d.default_value)) out[d.name] = d.default_value;
       continue;
     }
@@ -166,8 +181,10 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
         if (!std::holds_alternative<std::vector<double>>(v)) {
           // an empty Lua table arrives as an empty string list
           auto* vs = std::get_if<std::vector<std::string>>(&v);
-          if (vs && vs->empty()) v = std::vector<double>{};
-          else throw mistyped();
+          if (vs && vs->empty())
+            v = std::vector<double>{};
+          else
+            throw mistyped();
         }
         auto& vv = std::get<std::vector<double>>(v);
         if (static_cast<int>(vv.size()) < d.min_len || static_cast<int>(vv.size()) > d.max_len)
@@ -199,8 +216,10 @@ std::string ParamSpec::help_text() const {
   if (decls.empty()) os << "  (no parameters)\n";
   for (auto& d : decls) {
     os << "  " << d.name << " (" << type_name(d.type) << ", ";
-    if (d.is_required || std::holds_alternative<std::monostate>(d.default_value)) os << d.default_text();
-    else os << "default " << d.default_text();
+    if (d.is_required || std::holds_alternative<std::monostate>(d.default_value))
+      os << d.default_text();
+    else
+      os << "default " << d.default_text();
     auto r = d.range_text();
     if (!r.empty()) os << ", " << r;
     os << "): " << d.help << "\n";
@@ -213,12 +232,18 @@ const Value& ParamValues::get(const std::string& key) const {
   if (it == values_.end()) throw InputError(owner_ + ": key '" + key + "' has no value");
   return it->second;
 }
-bool ParamValues::has(const std::string& key) const { return values_.count(key) > 0; }
-double ParamValues::real(const std::string& key) const { return std::get<double>(get(key)); }
+bool ParamValues::has(const std::string& key) const {
+  return values_.count(key) > 0;
+}
+double ParamValues::real(const std::string& key) const {
+  return std::get<double>(get(key));
+}
 long ParamValues::integer(const std::string& key) const {
   return static_cast<long>(std::get<double>(get(key)));
 }
-bool ParamValues::boolean(const std::string& key) const { return std::get<bool>(get(key)); }
+bool ParamValues::boolean(const std::string& key) const {
+  return std::get<bool>(get(key));
+}
 const std::string& ParamValues::str(const std::string& key) const {
   return std::get<std::string>(get(key));
 }

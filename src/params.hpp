@@ -36,7 +36,7 @@ struct ParamDecl {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
-  std::vector<std::string> allowed;  // for String
+  std::vector<std::string> allowed;    // for String
   int min_len = 0, max_len = 1 << 30;  // for Vector/lists
 
   ParamDecl& required() {

@@ -86,14 +86,13 @@ class Registry {
 
 #define SLENDER_CONCAT_INNER(a, b) a##b
 #define SLENDER_CONCAT(a, b) SLENDER_CONCAT_INNER(a, b)
-#define SLENDER_REGISTER_STYLE(Base, NAME, Class)                                          \
-  namespace {                                                                              \
-  [[maybe_unused]] const bool SLENDER_CONCAT(slender_registered_, __LINE__) =              \
-      ::slender::Registry<Base>::add(                                                      \
-          NAME, [] { return Class::spec(NAME); },                                          \
-          [](::slender::Simulation& sim, const ::slender::ParamValues& p) -> std::unique_ptr<Base> { \
-            return std::make_unique<Class>(sim, p);                                        \
-          });                                                                              \
+#define SLENDER_REGISTER_STYLE(Base, NAME, Class)                                    \
+  namespace {                                                                        \
+  [[maybe_unused]] const bool SLENDER_CONCAT(slender_registered_, __LINE__) =        \
+      ::slender::Registry<Base>::add(                                                \
+          NAME, [] { return Class::spec(NAME); },                                    \
+          [](::slender::Simulation& sim, const ::slender::ParamValues& p)            \
+              -> std::unique_ptr<Base> { return std::make_unique<Class>(sim, p); }); \
   }
 
 }  // namespace slender

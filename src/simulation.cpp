@@ -131,8 +131,7 @@ Style* Simulation::find_style(const std::string& id) {
     if (d->id() == id) return d.get();
   return nullptr;
 }
-FixStyle& Simulation::add_fix(const std::string& id, const std::string& style,
-                              const RawParams& p) {
+FixStyle& Simulation::add_fix(const std::string& id, const std::string& style, const RawParams& p) {
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto f = Registry<FixStyle>::create(style, *this, p);
   f->set_id(id);
@@ -227,7 +226,8 @@ void Simulation::end_of_step() {
 
 double Simulation::kinetic_energy() const {
   double ke = 0.0;
-  for (size_t i = 0; i < nodes_.n_owned(); ++i) ke += 0.5 * nodes_.mass[i] * nodes_.v[i].squaredNorm();
+  for (size_t i = 0; i < nodes_.n_owned(); ++i)
+    ke += 0.5 * nodes_.mass[i] * nodes_.v[i].squaredNorm();
   return ke;
 }
 double Simulation::potential_energy() const {
@@ -288,7 +288,8 @@ double Simulation::column(const std::string& name) {
     return it == energy_.end() ? 0.0 : it->second;
   }
   Style* s = find_style(id);
-  if (!s) throw InputError("thermo column '" + name + "': no fix, compute or style with id '" + id + "'");
+  if (!s)
+    throw InputError("thermo column '" + name + "': no fix, compute or style with id '" + id + "'");
   if (auto* c = dynamic_cast<ComputeStyle*>(s)) c->evaluate(*this);
   return s->value(key);
 }
@@ -355,7 +356,8 @@ void Simulation::fail(const std::string& what, long bad_step) {
          << " or dt = \"auto\".";
     else
       os << " dt = " << dt << " is below the stable limit " << limit << " of the stiff terms ("
-         << who << "), so look at contact overlaps, loads or nodes out of place; a smaller dt (e.g. "
+         << who
+         << "), so look at contact overlaps, loads or nodes out of place; a smaller dt (e.g. "
          << dt * 0.5 << ") may still help.";
   }
   // Dump the last good state so nothing is lost and the user can inspect it.
@@ -504,9 +506,10 @@ void Simulation::run(const RunOptions& opt) {
       if (since >= thermo.progress_seconds) {
         double el = std::chrono::duration<double>(now - t0).count();
         double rate = (step - first) / el;
-        std::printf("  progress: step %ld of %ld (%.0f%%), %.3g steps/s, %.3g node-steps/s, ETA %.0f s\n",
-                    k, opt.steps, 100.0 * k / opt.steps, rate, rate * nodes_.n_owned(),
-                    (opt.steps - k) / rate);
+        std::printf(
+            "  progress: step %ld of %ld (%.0f%%), %.3g steps/s, %.3g node-steps/s, ETA %.0f s\n",
+            k, opt.steps, 100.0 * k / opt.steps, rate, rate * nodes_.n_owned(),
+            (opt.steps - k) / rate);
         std::fflush(stdout);
         last_progress = now;
       }

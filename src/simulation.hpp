@@ -41,7 +41,7 @@ struct ThermoOptions {
 
 struct RunOptions {
   long steps = 0;
-  long every = 0;                           // callback interval
+  long every = 0;                             // callback interval
   std::function<bool(Simulation&)> callback;  // returns true to stop the run
 };
 

@@ -8,7 +8,7 @@ namespace slender {
 
 struct Chain {
   std::string name;
-  std::vector<int> nodes;          // node indices in order along the chain
+  std::vector<int> nodes;           // node indices in order along the chain
   std::vector<double> rest_length;  // one per edge: nodes.size()-1, or nodes.size() if closed
   bool closed = false;
 

@@ -11,7 +11,8 @@ namespace slender {
 class Bend2dBond : public BondStyle {
  public:
   static ParamSpec spec(const std::string& name) {
-    ParamSpec s("bond", name, "elastic 2D bending spring on the signed turning angle of each interior node");
+    ParamSpec s("bond", name,
+                "elastic 2D bending spring on the signed turning angle of each interior node");
     s.real("k", "bending spring k2 = YI/l0 (moment per radian)").required().positive();
     s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
         .def(std::vector<std::string>{});

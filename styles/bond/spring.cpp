@@ -16,8 +16,7 @@ class SpringBond : public BondStyle {
         .def(std::vector<std::string>{});
     return s;
   }
-  SpringBond(Simulation& sim, const ParamValues& p)
-      : k_(p.real("k")), names_(p.strings("chains")) {
+  SpringBond(Simulation& sim, const ParamValues& p) : k_(p.real("k")), names_(p.strings("chains")) {
     select_chains(sim, names_);  // validates the names now, at the deck line
   }
   void setup(Simulation& sim) override { chains_ = select_chains(sim, names_); }

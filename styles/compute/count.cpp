@@ -11,7 +11,9 @@ class CountCompute : public ComputeStyle {
     s.string("group", "count only this group's nodes for key 'group'").def(std::string("all"));
     return s;
   }
-  CountCompute(Simulation& sim, const ParamValues& p) : group_(p.str("group")) { sim.group(group_); }
+  CountCompute(Simulation& sim, const ParamValues& p) : group_(p.str("group")) {
+    sim.group(group_);
+  }
   void evaluate(Simulation& sim) override {
     nodes_ = static_cast<double>(sim.nodes().n_owned());
     ghosts_ = static_cast<double>(sim.nodes().n_ghost());

@@ -10,12 +10,14 @@ namespace slender {
 class CheckpointDump : public DumpStyle {
  public:
   static ParamSpec spec(const std::string& name) {
-    ParamSpec s("dump", name, "restart file (HDF5) every N steps, written atomically (temp + rename)");
+    ParamSpec s("dump", name,
+                "restart file (HDF5) every N steps, written atomically (temp + rename)");
     s.string("file", "checkpoint file; %d is replaced by the step").required();
     s.integer("every", "steps between checkpoints").required().min(1);
     return s;
   }
-  CheckpointDump(Simulation&, const ParamValues& p) : file_(p.str("file")), every_(p.integer("every")) {}
+  CheckpointDump(Simulation&, const ParamValues& p)
+      : file_(p.str("file")), every_(p.integer("every")) {}
   long every() const override { return every_; }
   void write(Simulation& sim) override {
     if (sim.step == 0 && sim.time == 0.0) return;  // nothing to restart from yet

@@ -24,8 +24,11 @@ class H5mdDump : public DumpStyle {
     return s;
   }
   H5mdDump(Simulation& sim, const ParamValues& p)
-      : file_(p.str("file")), every_(p.integer("every")), fields_(p.strings("fields")),
-        xdmf_(p.boolean("xdmf")), dim_(sim.dimension()) {
+      : file_(p.str("file")),
+        every_(p.integer("every")),
+        fields_(p.strings("fields")),
+        xdmf_(p.boolean("xdmf")),
+        dim_(sim.dimension()) {
     bool has_pos = false;
     for (auto& f : fields_) has_pos = has_pos || f == "position";
     if (!has_pos) fields_.insert(fields_.begin(), "position");
@@ -65,7 +68,8 @@ class H5mdDump : public DumpStyle {
     }
     std::vector<double> e;
     for (auto& c : sim.topology().chains)
-      for (int j = 0; j < c.n_edges(); ++j) e.insert(e.end(), {double(c.edge_tail(j)), double(c.edge_head(j))});
+      for (int j = 0; j < c.n_edges(); ++j)
+        e.insert(e.end(), {double(c.edge_tail(j)), double(c.edge_head(j))});
     edges_->append(sim.step, sim.time, e.data(), e.size() / 2);
     frames_.push_back({sim.time, N, e.size() / 2});
     H5Fflush(file_h_, H5F_SCOPE_GLOBAL);
@@ -94,10 +98,14 @@ class H5mdDump : public DumpStyle {
       for (size_t i = 0; i < N; ++i)
         for (int c = 0; c < dim_; ++c) buf.push_back(v[i][c]);
     };
-    if (f == "position") vecs(n.x);
-    else if (f == "velocity") vecs(n.v);
-    else if (f == "force") vecs(n.f);
-    else if (f == "mass") buf.assign(n.mass.begin(), n.mass.begin() + static_cast<long>(N));
+    if (f == "position")
+      vecs(n.x);
+    else if (f == "velocity")
+      vecs(n.v);
+    else if (f == "force")
+      vecs(n.f);
+    else if (f == "mass")
+      buf.assign(n.mass.begin(), n.mass.begin() + static_cast<long>(N));
     else {
       buf = n.find_any(f)->to_flat();
       buf.resize(N * static_cast<size_t>(n.find_any(f)->ncomp()));
@@ -107,11 +115,12 @@ class H5mdDump : public DumpStyle {
   std::string slab(const std::string& path, long t, size_t n, int nc, size_t cap, long frames,
                    const char* type) const {
     char head[512];
-    std::snprintf(head, sizeof head,
-                  "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu %d\" Type=\"HyperSlab\">\n"
-                  "  <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %zu %d</DataItem>\n"
-                  "  <DataItem Dimensions=\"%ld %zu %d\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">",
-                  n, nc, t, n, nc, frames, cap, nc, type);
+    std::snprintf(
+        head, sizeof head,
+        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu %d\" Type=\"HyperSlab\">\n"
+        "  <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %zu %d</DataItem>\n"
+        "  <DataItem Dimensions=\"%ld %zu %d\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">",
+        n, nc, t, n, nc, frames, cap, nc, type);
     return std::string(head) + base_name() + ":" + path + "</DataItem>\n</DataItem>\n";
   }
   std::string base_name() const {
@@ -127,18 +136,22 @@ class H5mdDump : public DumpStyle {
     const long T = static_cast<long>(frames_.size());
     for (long t = 0; t < T; ++t) {
       auto& fr = frames_[static_cast<size_t>(t)];
-      out << "<Grid Name=\"frame" << t << "\" GridType=\"Uniform\">\n<Time Value=\"" << fr.time << "\"/>\n";
-      out << "<Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << fr.edges << "\">\n"
+      out << "<Grid Name=\"frame" << t << "\" GridType=\"Uniform\">\n<Time Value=\"" << fr.time
+          << "\"/>\n";
+      out << "<Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\""
+          << fr.edges << "\">\n"
           << slab("/connectivity/edges/value", t, fr.edges, 2, edges_->capacity(), T, "Int")
           << "</Topology>\n";
       out << "<Geometry GeometryType=\"" << (dim_ == 2 ? "XY" : "XYZ") << "\">\n"
-          << slab("/particles/all/position/value", t, fr.nodes, dim_, series_[0]->capacity(), T, "Float")
+          << slab("/particles/all/position/value", t, fr.nodes, dim_, series_[0]->capacity(), T,
+                  "Float")
           << "</Geometry>\n";
       for (size_t k = 1; k < fields_.size(); ++k) {
         const int nc = ncomps_[k];
         out << "<Attribute Name=\"" << fields_[k] << "\" Center=\"Node\" AttributeType=\""
             << (nc == 1 ? "Scalar" : "Vector") << "\">\n"
-            << slab("/particles/all/" + fields_[k] + "/value", t, fr.nodes, nc, series_[k]->capacity(), T, "Float")
+            << slab("/particles/all/" + fields_[k] + "/value", t, fr.nodes, nc,
+                    series_[k]->capacity(), T, "Float")
             << "</Attribute>\n";
       }
       out << "</Grid>\n";

@@ -20,10 +20,15 @@ class ClampFix : public FixStyle {
   ClampFix(Simulation& sim, const ParamValues& p) {
     int bits = 0;
     for (char ch : p.str("components")) {
-      if (ch == 'x') bits |= 1;
-      else if (ch == 'y') bits |= 2;
-      else if (ch == 'z') bits |= 4;
-      else throw InputError("fix 'clamp': components must use only x, y, z, got \"" + p.str("components") + "\"");
+      if (ch == 'x')
+        bits |= 1;
+      else if (ch == 'y')
+        bits |= 2;
+      else if (ch == 'z')
+        bits |= 4;
+      else
+        throw InputError("fix 'clamp': components must use only x, y, z, got \"" +
+                         p.str("components") + "\"");
     }
     auto nodes = sim.group(p.str("group"));
     auto& mask = sim.nodes().require<int>("dof_mask", 0);

@@ -11,7 +11,9 @@ class ConstantForceFix : public FixStyle {
     ParamSpec s("fix", name, "constant or linearly ramped external force on each node of a group");
     s.string("group", "node group").required();
     s.vector("force", "force vector on each node").required().length(2, 3);
-    s.vector("rate", "d force / dt, for slow load ramps").def(std::vector<double>{0, 0, 0}).length(2, 3);
+    s.vector("rate", "d force / dt, for slow load ramps")
+        .def(std::vector<double>{0, 0, 0})
+        .length(2, 3);
     return s;
   }
   ConstantForceFix(Simulation& sim, const ParamValues& p)

@@ -12,14 +12,21 @@ namespace slender {
 class SphereWallFix : public FixStyle {
  public:
   static ParamSpec spec(const std::string& name) {
-    ParamSpec s("fix", name, "rigid spherical (3D) / circular (2D) wall with a penalty normal force");
+    ParamSpec s("fix", name,
+                "rigid spherical (3D) / circular (2D) wall with a penalty normal force");
     s.vector("center", "centre of the wall").def(std::vector<double>{0, 0, 0}).length(2, 3);
     s.real("radius", "wall radius").required().positive();
     s.real("stiffness", "penalty stiffness k").required().positive();
     s.real("exponent", "force law F = k delta^p: 1 linear, 2 quadratic (MODELS.md §2.3)")
-        .def(1.0).min(1.0).max(3.0);
-    s.real("diameter", "node (wire) diameter d: contact starts at |x-c| = R - d/2").def(0.0).nonnegative();
-    s.string("side", "which side the nodes live on").def(std::string("inside")).choices({"inside", "outside"});
+        .def(1.0)
+        .min(1.0)
+        .max(3.0);
+    s.real("diameter", "node (wire) diameter d: contact starts at |x-c| = R - d/2")
+        .def(0.0)
+        .nonnegative();
+    s.string("side", "which side the nodes live on")
+        .def(std::string("inside"))
+        .choices({"inside", "outside"});
     s.string("group", "node group").def(std::string("all"));
     return s;
   }

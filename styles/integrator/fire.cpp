@@ -11,15 +11,23 @@ class FireIntegrator : public IntegratorStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("integrator", name, "FIRE minimiser: inertial relaxation to a static equilibrium");
-    s.add("dt", ParamType::RealOrAuto, "initial time step, or \"auto\"").def(std::string("auto")).positive();
-    s.real("safety", "fraction of the stable step used by dt = \"auto\"").def(0.5).positive().max(1.0);
+    s.add("dt", ParamType::RealOrAuto, "initial time step, or \"auto\"")
+        .def(std::string("auto"))
+        .positive();
+    s.real("safety", "fraction of the stable step used by dt = \"auto\"")
+        .def(0.5)
+        .positive()
+        .max(1.0);
     s.real("dt_max", "largest step as a multiple of the initial one").def(10.0).min(1.0);
     s.real("alpha", "initial velocity-mixing parameter").def(0.1).positive().max(1.0);
     s.integer("n_min", "downhill steps before the step may grow").def(5.0).min(0);
     s.real("f_inc", "step growth factor").def(1.1).min(1.0);
     s.real("f_dec", "step shrink factor on an uphill step").def(0.5).positive().max(1.0);
     s.real("f_alpha", "alpha decay factor").def(0.99).positive().max(1.0);
-    s.real("dt_min", "smallest step as a multiple of the initial one").def(0.02).positive().max(1.0);
+    s.real("dt_min", "smallest step as a multiple of the initial one")
+        .def(0.02)
+        .positive()
+        .max(1.0);
     return s;
   }
   FireIntegrator(Simulation&, const ParamValues& p)

@@ -16,11 +16,16 @@ class GearIntegrator : public IntegratorStyle {
     ParamSpec s("integrator", name,
                 "Gear predictor-corrector, Nordsieck form with q stored values (MODELS.md §3.4)");
     s.integer("values", "stored values q: derivatives 0..q-1 (5: 2D wires, 6: 3D rods)")
-        .def(5.0).min(4).max(6);
+        .def(5.0)
+        .min(4)
+        .max(6);
     s.add("dt", ParamType::RealOrAuto, "time step, or \"auto\" = safety * limit / omega_max")
         .def(std::string("auto"))
         .positive();
-    s.real("safety", "fraction of the stable step used by dt = \"auto\"").def(0.5).positive().max(1.0);
+    s.real("safety", "fraction of the stable step used by dt = \"auto\"")
+        .def(0.5)
+        .positive()
+        .max(1.0);
     return s;
   }
   GearIntegrator(Simulation& sim, const ParamValues& p)

@@ -4,7 +4,6 @@
 
 namespace slender {
 
-
 class VelocityVerletIntegrator : public IntegratorStyle {
  public:
   static ParamSpec spec(const std::string& name) {
@@ -12,7 +11,10 @@ class VelocityVerletIntegrator : public IntegratorStyle {
     s.add("dt", ParamType::RealOrAuto, "time step, or \"auto\" = safety * 2 / omega_max")
         .def(std::string("auto"))
         .positive();
-    s.real("safety", "fraction of the stable step used by dt = \"auto\"").def(0.5).positive().max(1.0);
+    s.real("safety", "fraction of the stable step used by dt = \"auto\"")
+        .def(0.5)
+        .positive()
+        .max(1.0);
     return s;
   }
   VelocityVerletIntegrator(Simulation&, const ParamValues& p)

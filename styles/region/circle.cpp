@@ -10,7 +10,8 @@ class CircleRegion : public RegionStyle {
     ParamSpec s("region", name, "disc |(x-c)_xy| <= R (a z-aligned cylinder in 3D)");
     s.vector("center", "centre (x, y)").def(std::vector<double>{0, 0}).length(2, 3);
     s.real("radius", "radius").required().positive();
-    s.boolean("bounds", "part of the domain: a node outside every bounding region stops the run").def(false);
+    s.boolean("bounds", "part of the domain: a node outside every bounding region stops the run")
+        .def(false);
     return s;
   }
   CircleRegion(Simulation&, const ParamValues& p) : c_(p.vec3("center")), r_(p.real("radius")) {

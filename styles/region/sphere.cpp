@@ -10,7 +10,8 @@ class SphereRegion : public RegionStyle {
     ParamSpec s("region", name, "ball |x - c| <= R (a disc in 2D)");
     s.vector("center", "centre").def(std::vector<double>{0, 0, 0}).length(2, 3);
     s.real("radius", "radius").required().positive();
-    s.boolean("bounds", "part of the domain: a node outside every bounding region stops the run").def(false);
+    s.boolean("bounds", "part of the domain: a node outside every bounding region stops the run")
+        .def(false);
     return s;
   }
   SphereRegion(Simulation& sim, const ParamValues& p) : c_(p.vec3("center")), r_(p.real("radius")) {

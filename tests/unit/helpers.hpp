@@ -11,7 +11,9 @@
 
 namespace slender::test {
 
-inline RawParams P(std::initializer_list<std::pair<const std::string, Value>> kv) { return RawParams(kv); }
+inline RawParams P(std::initializer_list<std::pair<const std::string, Value>> kv) {
+  return RawParams(kv);
+}
 
 // A wiggly chain with random offsets so no configuration is special.
 inline std::vector<Vec3> wiggly_chain(int n, int dim, unsigned seed, double amp = 0.3) {

@@ -37,8 +37,9 @@ TEST(SpringBond, RejectsBadParameters) {
   EXPECT_THROW(sim.add_bond("spring", P({{"k", 1.0}, {"kk", 2.0}})), InputError);
   EXPECT_THROW(sim.add_bond("spring", P({{"k", std::string("stiff")}})), InputError);
   EXPECT_THROW(sim.add_bond("spring", P({})), InputError);
-  EXPECT_THROW(sim.add_bond("spring", P({{"k", 1.0}, {"chains", std::vector<std::string>{"nope"}}})),
-               InputError);
+  EXPECT_THROW(
+      sim.add_bond("spring", P({{"k", 1.0}, {"chains", std::vector<std::string>{"nope"}}})),
+      InputError);
 }
 
 TEST(Bend2dBond, ForceMatchesEnergyGradient) {
@@ -52,7 +53,8 @@ TEST(Bend2dBond, SignedAngleAndMoment) {
   Simulation sim(2, 1);
   // a left turn by 30 degrees at the middle node
   const double a = M_PI / 6;
-  sim.add_chain("w", {Vec3(-1, 0, 0), Vec3(0, 0, 0), Vec3(std::cos(a), std::sin(a), 0)}, 1.0, false);
+  sim.add_chain("w", {Vec3(-1, 0, 0), Vec3(0, 0, 0), Vec3(std::cos(a), std::sin(a), 0)}, 1.0,
+                false);
   sim.add_bond("bend2d", P({{"k", 60.0}}));
   sim.compute_forces();
   EXPECT_NEAR(sim.energies().at("bend"), 0.5 * 60 * a * a, 1e-12);
@@ -66,7 +68,8 @@ TEST(Bend2dBond, SignedAngleAndMoment) {
   double torque = 0;
   for (int i = 0; i < 3; ++i) {
     sum += sim.nodes().f[i];
-    torque += sim.nodes().x[i].x() * sim.nodes().f[i].y() - sim.nodes().x[i].y() * sim.nodes().f[i].x();
+    torque +=
+        sim.nodes().x[i].x() * sim.nodes().f[i].y() - sim.nodes().x[i].y() * sim.nodes().f[i].x();
   }
   EXPECT_LT(sum.norm(), 1e-12);
   EXPECT_NEAR(torque, 0.0, 1e-12);
@@ -75,7 +78,8 @@ TEST(Bend2dBond, SignedAngleAndMoment) {
 TEST(Bend2dBond, ClosedRingIsForceFreeWhenRegular) {
   Simulation sim(2, 1);
   std::vector<Vec3> pts;
-  for (int i = 0; i < 12; ++i) pts.emplace_back(std::cos(2 * M_PI * i / 12), std::sin(2 * M_PI * i / 12), 0);
+  for (int i = 0; i < 12; ++i)
+    pts.emplace_back(std::cos(2 * M_PI * i / 12), std::sin(2 * M_PI * i / 12), 0);
   sim.add_chain("ring", pts, 1.0, true);
   sim.add_bond("bend2d", P({{"k", 5.0}}));
   sim.compute_forces();

@@ -15,8 +15,9 @@ using namespace slender;
 using namespace slender::test;
 
 TEST(Registry, EveryFamilyHasItsFirstStylesAndHelp) {
-  for (auto name : {"spring", "bend2d", "clamp", "force/constant", "damping/viscous", "wall/sphere",
-                    "wall/circle", "energy", "count", "verlet", "gear", "fire", "circle", "sphere", "box"})
+  for (auto name :
+       {"spring", "bend2d", "clamp", "force/constant", "damping/viscous", "wall/sphere",
+        "wall/circle", "energy", "count", "verlet", "gear", "fire", "circle", "sphere", "box"})
     EXPECT_EQ(Catalog::lookup(name).size(), 1u) << name;
   for (auto& e : Catalog::entries()) {
     ParamSpec s = e.spec();
@@ -86,16 +87,20 @@ TEST(Topology, ChainsGrowAtEitherEnd) {
 
 TEST(Regions, ContainmentOfCircleSphereBox) {
   Simulation sim(3, 1);
-  auto& c = sim.add_region("c", "circle", P({{"radius", 2.0}, {"center", std::vector<double>{1, 0}}}));
+  auto& c =
+      sim.add_region("c", "circle", P({{"radius", 2.0}, {"center", std::vector<double>{1, 0}}}));
   EXPECT_TRUE(c.contains(Vec3(2.9, 0, 100)));  // a z-aligned cylinder in 3D
   EXPECT_FALSE(c.contains(Vec3(3.1, 0, 0)));
   auto& s = sim.add_region("s", "sphere", P({{"radius", 1.0}}));
   EXPECT_TRUE(s.contains(Vec3(0.5, 0.5, 0.5)));
   EXPECT_FALSE(s.contains(Vec3(0.6, 0.6, 0.6)));
-  auto& b = sim.add_region("b", "box", P({{"lo", std::vector<double>{0, 0, 0}}, {"hi", std::vector<double>{1, 2, 3}}}));
+  auto& b = sim.add_region(
+      "b", "box", P({{"lo", std::vector<double>{0, 0, 0}}, {"hi", std::vector<double>{1, 2, 3}}}));
   EXPECT_TRUE(b.contains(Vec3(0.5, 1.5, 2.5)));
   EXPECT_FALSE(b.contains(Vec3(0.5, 2.5, 2.5)));
-  EXPECT_THROW(sim.add_region("bad", "box", P({{"lo", std::vector<double>{1, 0, 0}}, {"hi", std::vector<double>{0, 1, 1}}})),
+  EXPECT_THROW(sim.add_region(
+                   "bad", "box",
+                   P({{"lo", std::vector<double>{1, 0, 0}}, {"hi", std::vector<double>{0, 1, 1}}})),
                InputError);
   EXPECT_THROW(sim.add_region("c", "sphere", P({{"radius", 1.0}})), InputError);
 }
@@ -146,7 +151,7 @@ TEST(Guard, CatchesNonFiniteForceAndNamesAStableDt) {
   sim.guard.last_good_file = "guard_test_last_good.h5";
   sim.add_chain("w", wiggly_chain(10, 2, 2, 0.1), 1.0, false);
   sim.add_bond("spring", P({{"k", 1000.0}}));
-  sim.nodes().v[4] = Vec3(0.01, 0.02, 0);  // rest lengths come from the start: kick it
+  sim.nodes().v[4] = Vec3(0.01, 0.02, 0);          // rest lengths come from the start: kick it
   sim.set_integrator("verlet", P({{"dt", 0.2}}));  // omega dt = 13: unstable
   try {
     sim.run(RunOptions{100000, 0, {}});
@@ -166,17 +171,20 @@ TEST(Guard, NodeLeavingEveryBoundingRegionStopsTheRun) {
   sim.guard.last_good_file = "guard_test_bounds.h5";
   sim.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1.0, false);
   sim.add_bond("spring", P({{"k", 1.0}}));
-  sim.add_region("box", "box", P({{"lo", std::vector<double>{-1, -1}}, {"hi", std::vector<double>{3, 1}}}));
+  sim.add_region("box", "box",
+                 P({{"lo", std::vector<double>{-1, -1}}, {"hi", std::vector<double>{3, 1}}}));
   EXPECT_THROW(sim.add_region("b2", "sphere", P({{"radius", -1.0}})), InputError);
   sim.add_region("domain", "sphere", P({{"radius", 2.0}, {"bounds", true}}));
   sim.set_group("end", {1});
-  sim.add_fix("push", "force/constant", P({{"group", std::string("end")}, {"force", std::vector<double>{5, 0}}}));
+  sim.add_fix("push", "force/constant",
+              P({{"group", std::string("end")}, {"force", std::vector<double>{5, 0}}}));
   sim.set_integrator("verlet", P({{"dt", 0.01}}));
   try {
     sim.run(RunOptions{100000, 0, {}});
     FAIL() << "the node left the domain unnoticed";
   } catch (const InstabilityError& e) {
-    EXPECT_NE(std::string(e.what()).find("left every bounding region"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("left every bounding region"), std::string::npos)
+        << e.what();
   }
   std::remove("guard_test_bounds.h5");
 }
@@ -202,9 +210,15 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
     sim.add_chain("w", wiggly_chain(7, 2, 3), 1.0, false);
     sim.add_bond("spring", P({{"k", 50.0}}));
     sim.set_integrator("verlet", P({{"dt", 0.01}}));
-    sim.add_dump("d", "h5md", P({{"file", file}, {"every", 10.0}, {"fields", std::vector<std::string>{"position", "velocity"}}}));
+    sim.add_dump("d", "h5md",
+                 P({{"file", file},
+                    {"every", 10.0},
+                    {"fields", std::vector<std::string>{"position", "velocity"}}}));
     sim.run(RunOptions{50, 0, {}});
-    EXPECT_THROW(sim.add_dump("e", "h5md", P({{"file", std::string("x.h5")}, {"every", 1.0}, {"fields", std::vector<std::string>{"torque"}}})),
+    EXPECT_THROW(sim.add_dump("e", "h5md",
+                              P({{"file", std::string("x.h5")},
+                                 {"every", 1.0},
+                                 {"fields", std::vector<std::string>{"torque"}}})),
                  InputError);
   }
   auto f = h5::open_file(file, false);

@@ -10,10 +10,14 @@ TEST(SphereWallFix, ForceMatchesEnergyGradientInside) {
   for (double p : {1.0, 2.0}) {
     Simulation sim(3, 1);
     // nodes near and beyond a sphere of radius 3 centred at (0.5, 0, 0)
-    sim.add_chain("w", {Vec3(3.2, 0.3, 0.1), Vec3(0.5, 3.4, 0.2), Vec3(0.1, 0.2, 0.3), Vec3(-2.3, -0.4, 1.2)},
-                  1.0, false);
+    sim.add_chain(
+        "w", {Vec3(3.2, 0.3, 0.1), Vec3(0.5, 3.4, 0.2), Vec3(0.1, 0.2, 0.3), Vec3(-2.3, -0.4, 1.2)},
+        1.0, false);
     sim.add_fix("wall", "wall/sphere",
-                P({{"radius", 3.0}, {"stiffness", 50.0}, {"exponent", p}, {"diameter", 1.0},
+                P({{"radius", 3.0},
+                   {"stiffness", 50.0},
+                   {"exponent", p},
+                   {"diameter", 1.0},
                    {"center", std::vector<double>{0.5, 0, 0}}}));
     sim.compute_forces();
     EXPECT_GT(sim.energies().at("external"), 0.0) << p;
@@ -50,7 +54,8 @@ TEST(ConstantForceFix, EnergyIsMinusWorkAndRampsInTime) {
   sim.add_chain("w", wiggly_chain(4, 2, 3), 1.0, false);
   sim.set_group("ends", {0, 3});
   sim.add_fix("load", "force/constant",
-              P({{"group", std::string("ends")}, {"force", std::vector<double>{1.0, -2.0}},
+              P({{"group", std::string("ends")},
+                 {"force", std::vector<double>{1.0, -2.0}},
                  {"rate", std::vector<double>{0.5, 0.0}}}));
   sim.nodes().x[0] += Vec3(0.3, 0.1, 0);
   EXPECT_LT(fd_force_error(sim), 1e-6);
@@ -60,8 +65,10 @@ TEST(ConstantForceFix, EnergyIsMinusWorkAndRampsInTime) {
   sim.time = 2.0;
   sim.compute_forces();
   EXPECT_NEAR(sim.nodes().f[3].x(), 1.0 + 0.5 * 2.0, 1e-12);
-  EXPECT_THROW(sim.add_fix("x", "force/constant", P({{"group", std::string("nope")}, {"force", std::vector<double>{1, 0}}})),
-               InputError);
+  EXPECT_THROW(
+      sim.add_fix("x", "force/constant",
+                  P({{"group", std::string("nope")}, {"force", std::vector<double>{1, 0}}})),
+      InputError);
 }
 
 TEST(ClampFix, ClampedComponentsNeverMove) {
@@ -73,7 +80,8 @@ TEST(ClampFix, ClampedComponentsNeverMove) {
   sim.set_group("first", {0});
   sim.set_group("last", {11});
   sim.add_fix("root", "clamp", P({{"group", std::string("first")}, {"rotation", true}}));
-  sim.add_fix("slide", "clamp", P({{"group", std::string("last")}, {"components", std::string("y")}}));
+  sim.add_fix("slide", "clamp",
+              P({{"group", std::string("last")}, {"components", std::string("y")}}));
   const Vec3 x0 = sim.nodes().x[0], x1 = sim.nodes().x[1], x11 = sim.nodes().x[11];
   for (auto* integ : {"verlet", "gear", "fire"}) {
     sim.set_integrator(integ, P({{"dt", 0.005}}));
@@ -83,7 +91,8 @@ TEST(ClampFix, ClampedComponentsNeverMove) {
     EXPECT_EQ(sim.nodes().x[11].y(), x11.y()) << integ;
   }
   EXPECT_NE(sim.nodes().x[11].x(), x11.x());  // the free component did move
-  EXPECT_THROW(sim.add_fix("bad", "clamp", P({{"group", std::string("first")}, {"components", std::string("xw")}})),
+  EXPECT_THROW(sim.add_fix("bad", "clamp",
+                           P({{"group", std::string("first")}, {"components", std::string("xw")}})),
                InputError);
 }
 

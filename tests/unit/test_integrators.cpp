@@ -33,7 +33,8 @@ double error_after(const std::string& integ, RawParams ip, double dt, double T) 
   // largest error over the trajectory: a single end time can sit on a zero crossing
   double worst = 0.0;
   sim->run(RunOptions{steps, 1, [&](Simulation& s) {
-                        worst = std::max(worst, std::abs(s.nodes().x[1].x() - (1.0 + A * std::cos(w * s.time))));
+                        worst = std::max(
+                            worst, std::abs(s.nodes().x[1].x() - (1.0 + A * std::cos(w * s.time))));
                         return false;
                       }});
   return worst;
@@ -84,11 +85,11 @@ TEST(Integrators, GearOrders) {
 }
 
 TEST(Integrators, DeclaredStabilityLimitsHold) {
-  for (auto [name, ip] : std::vector<std::pair<std::string, RawParams>>{
-           {"verlet", {}},
-           {"gear", P({{"values", 4.0}})},
-           {"gear", P({{"values", 5.0}})},
-           {"gear", P({{"values", 6.0}})}}) {
+  for (auto [name, ip] :
+       std::vector<std::pair<std::string, RawParams>>{{"verlet", {}},
+                                                      {"gear", P({{"values", 4.0}})},
+                                                      {"gear", P({{"values", 5.0}})},
+                                                      {"gear", P({{"values", 6.0}})}}) {
     auto sim = oscillator(name, ip, 1.0, 0.0);
     const double limit = sim->integrator()->stability_limit();
     double lo = 0.05, hi = 4.0;  // bisection on the measured limit
@@ -96,9 +97,10 @@ TEST(Integrators, DeclaredStabilityLimitsHold) {
       double mid = 0.5 * (lo + hi);
       (growth(name, ip, mid) < 2.0 ? lo : hi) = mid;
     }
-    std::printf("%s %s: measured limit omega dt = %.4f, declared %.4f\n", name.c_str(),
-                ip.count("values") ? std::to_string(int(std::get<double>(ip["values"]))).c_str() : "",
-                lo, limit);
+    std::printf(
+        "%s %s: measured limit omega dt = %.4f, declared %.4f\n", name.c_str(),
+        ip.count("values") ? std::to_string(int(std::get<double>(ip["values"]))).c_str() : "", lo,
+        limit);
     EXPECT_LE(limit, lo * 1.001) << name;
     EXPECT_GE(limit, lo * 0.95) << name;
   }
@@ -121,7 +123,8 @@ TEST(Integrators, ViscousDampingDecaysAtTheRightRate) {
   double worst = 0;
   sim->run(RunOptions{1400, 1, [&](Simulation& s) {
                         const double t = s.time;
-                        const double exact = 0.1 * std::exp(-b * t) * (std::cos(wd * t) + b / wd * std::sin(wd * t));
+                        const double exact =
+                            0.1 * std::exp(-b * t) * (std::cos(wd * t) + b / wd * std::sin(wd * t));
                         worst = std::max(worst, std::abs(s.nodes().x[1].x() - 1.0 - exact));
                         return false;
                       }});

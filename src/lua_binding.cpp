@@ -205,6 +205,17 @@ ParamSpec minimize_spec() {
   return s;
 }
 
+// The command declarations join the catalog, so `slender --help wire` and
+// docs/styles.md describe them from the same declarations that validate decks.
+[[maybe_unused]] const bool commands_registered = [] {
+  for (auto* spec : {&simulation_spec, &wire_spec, &group_spec, &thermo_spec, &guard_spec,
+                     &run_spec, &minimize_spec}) {
+    ParamSpec s = (*spec)();
+    Catalog::entries().push_back(CatalogEntry{"command", s.name, *spec});
+  }
+  return true;
+}();
+
 // ------------------------------------------------------------ methods
 
 int l_simulation(lua_State* L) {

@@ -23,6 +23,8 @@ const char* type_name(ParamType t) {
       return "list of strings";
     case ParamType::IntList:
       return "list of integers";
+    case ParamType::Function:
+      return "function";
   }
   return "?";
 }
@@ -108,8 +110,12 @@ const ParamDecl* ParamSpec::find(const std::string& key) const {
   return nullptr;
 }
 
+std::string ParamSpec::owner_text() const {
+  return family == "command" ? "command '" + name + "'" : family + " style '" + name + "'";
+}
+
 ParamValues ParamSpec::validate(const RawParams& raw) const {
-  const std::string who = family + " style '" + name + "'";
+  const std::string who = owner_text();
   for (auto& [key, v] : raw) {
     if (!find(key)) {
       std::string known;
@@ -197,6 +203,8 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
         }
         break;
       }
+      case ParamType::Function:
+        throw InputError(who + ": key '" + d.name + "' must be a Lua function");
       case ParamType::StringList:
         if (std::holds_alternative<std::string>(v))
           v = std::vector<std::string>{std::get<std::string>(v)};
@@ -212,7 +220,7 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
 
 std::string ParamSpec::help_text() const {
   std::ostringstream os;
-  os << family << " style \"" << name << "\": " << summary << "\n";
+  os << owner_text() << ": " << summary << "\n";
   if (decls.empty()) os << "  (no parameters)\n";
   for (auto& d : decls) {
     os << "  " << d.name << " (" << type_name(d.type) << ", ";

@@ -18,7 +18,7 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class ParamType { Real, Int, Bool, String, Vector, RealOrAuto, StringList, IntList };
+enum class ParamType { Real, Int, Bool, String, Vector, RealOrAuto, StringList, IntList, Function };
 
 const char* type_name(ParamType t);
 
@@ -106,6 +106,8 @@ struct ParamSpec {
   // Checks keys, types and ranges; fills defaults. Throws InputError.
   ParamValues validate(const RawParams& raw) const;
   std::string help_text() const;
+  // How messages name the owner: "bond style 'spring'" or "command 'wire'".
+  std::string owner_text() const;
 };
 
 // Validated values of one style instance.

@@ -45,11 +45,17 @@ function M.cantilever_tip(P, EI, EA, L, steps)
   return x, y
 end
 
--- Euler buckling loads of a column of length L.
-function M.euler_load(bc, EI, L)
-  if bc == "pinned" then return math.pi ^ 2 * EI / L ^ 2 end
-  if bc == "clamped" then return math.pi ^ 2 * EI / (4 * L ^ 2) end
-  error("bc must be 'pinned' (pinned-pinned) or 'clamped' (clamped-free)", 2)
+-- Euler buckling loads of a column of length L. With a finite axial stiffness EA
+-- the column is shortened by P/EA before it buckles; linearising EI theta' = M with
+-- y' = (1 - P/EA) theta gives P (1 - P/EA) = P_Euler, the smaller root of which is
+-- returned (EA = math.huge gives the classic load).
+function M.euler_load(bc, EI, L, EA)
+  local pe
+  if bc == "pinned" then pe = math.pi ^ 2 * EI / L ^ 2
+  elseif bc == "clamped" then pe = math.pi ^ 2 * EI / (4 * L ^ 2)
+  else error("bc must be 'pinned' (pinned-pinned) or 'clamped' (clamped-free)", 2) end
+  if not EA or EA == math.huge then return pe end
+  return 0.5 * EA * (1 - math.sqrt(1 - 4 * pe / EA))
 end
 
 -- Maps the integrator names of the validation sweeps to slender styles.

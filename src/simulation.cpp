@@ -360,16 +360,30 @@ void Simulation::fail(const std::string& what, long bad_step) {
          << "), so look at contact overlaps, loads or nodes out of place; a smaller dt (e.g. "
          << dt * 0.5 << ") may still help.";
   }
-  // Dump the last good state so nothing is lost and the user can inspect it.
+  // Return to the last good state and dump it, so nothing is lost and the user can
+  // inspect it or continue with a smaller dt. Forces and history arrays (e.g. Gear
+  // derivatives) of the bad steps are not part of it: they are reset, never written
+  // as NaN.
   if (good_step_ >= 0) {
-    auto bad_x = nodes_.x, bad_v = nodes_.v;
-    long bad = step;
-    double bad_t = time;
     nodes_.x = good_x_;
     nodes_.v = good_v_;
     step = good_step_;
     time = good_time_;
     for (auto& f : nodes_.f) f.setZero();
+    forces_valid = false;
+    ++state_epoch;
+    for (auto& [name, p] : nodes_.properties()) {
+      auto flat = p->to_flat();
+      bool dirty = false;
+      for (double& v : flat)
+        if (!std::isfinite(v)) {
+          v = 0.0;
+          dirty = true;
+        }
+      if (dirty) p->from_flat(flat);
+    }
+    for (auto& [k, e] : energy_)
+      if (!std::isfinite(e)) e = 0.0;
     try {
       write_checkpoint(guard.last_good_file);
       os << " Last good state (step " << good_step_ << ") written to " << guard.last_good_file
@@ -378,10 +392,6 @@ void Simulation::fail(const std::string& what, long bad_step) {
       os << " (could not write the last good state: " << e.what() << ")";
     }
     for (auto& d : dumps_) d->flush();
-    nodes_.x = bad_x;
-    nodes_.v = bad_v;
-    step = bad;
-    time = bad_t;
   }
   throw InstabilityError(os.str());
 }

@@ -1,0 +1,228 @@
+// 2D bending with plastic hysteresis (MODELS.md §2.2): kinematic hardening with a
+// smooth quadratic transition. Per interior node the plastic curvature kappa_pl is
+// a node property ("bend.plastic_curvature"), allocated only by this style.
+//
+// With x = kappa - kappa_pl the elastic curvature and K_e = k l0:
+//   thresholds  x_p^+ = max(kappa_y, x0 + delta), x_p^- = min(-kappa_y, x0 - delta),
+//               x0 = -K_h kappa_pl / K_e (the guard keeps M = 0 in the linear zone),
+//               x_e^+- = x_p^+- -+ delta;
+//   flow        x > x_p^+: kappa_pl += x - x_p^+ (and the mirror image);
+//   moment      M = g(x) + K_h kappa_pl, g linear in [x_e^-, x_e^+] with slope K_e and
+//               quadratic beyond it, reaching slope K_h at x_p^+- (C1 everywhere).
+// The moment enters the nodal forces exactly as the elastic bend2d moment (§2.1).
+// Energy reported under "bend" is the recoverable part (1/2 M^2 l0 / K_e in the
+// linear zone, §2.7; the exact integral along the reversible transition beyond it);
+// the energy made unrecoverable by plastic flow is accumulated exactly as "dissipated".
+#include <cmath>
+#include <random>
+
+#include "chain_select.hpp"
+#include "registry.hpp"
+
+namespace slender {
+
+class BendHysteresisBond : public BondStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("bond", name,
+                "2D bending spring with plastic hysteresis: kinematic hardening, smooth transition "
+                "(MODELS.md §2.2)");
+    s.real("k", "elastic bending spring k2 = YI/l0 (moment per radian); K_e = k2 l0")
+        .required()
+        .positive();
+    s.real("yield_curvature", "kappa_y: half-width of the elastic range (>= pi/l0: purely elastic)")
+        .required()
+        .nonnegative();
+    s.real("hardening_ratio", "K_h / K_e, the plastic (hardening) slope over the elastic one")
+        .def(0.05)
+        .min(0.0)
+        .max(1.0, true);
+    s.real("transition", "delta: width of the quadratic transition (default kappa_y / 2)")
+        .nonnegative();
+    s.boolean("guard", "widen the elastic range so that M = 0 stays in its linear part").def(true);
+    s.real("initial_plastic",
+           "random initial kappa_pl, uniform in +-value (seeded symmetry breaking)")
+        .def(0.0)
+        .nonnegative();
+    s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
+        .def(std::vector<std::string>{});
+    return s;
+  }
+
+  BendHysteresisBond(Simulation& sim, const ParamValues& p)
+      : k_(p.real("k")),
+        ky_(p.real("yield_curvature")),
+        ratio_(p.real("hardening_ratio")),
+        delta_(p.has("transition") ? p.real("transition") : 0.5 * p.real("yield_curvature")),
+        guard_(p.boolean("guard")),
+        names_(p.strings("chains")) {
+    if (sim.dimension() != 2)
+      throw InputError("bond style 'bend2d/hysteresis' needs a 2D simulation (dimension = 2)");
+    if (delta_ > ky_)
+      throw InputError("bond style 'bend2d/hysteresis': transition (" + std::to_string(delta_) +
+                       ") must not exceed yield_curvature (" + std::to_string(ky_) + ")");
+    auto chains = select_chains(sim, names_);
+    auto& n = sim.nodes();
+    kpl_ = &n.require<double>("bend.plastic_curvature", 0.0);
+    const double amp = p.real("initial_plastic");
+    if (amp > 0) {
+      std::uniform_real_distribution<double> u(-amp, amp);
+      for (auto* c : chains)
+        for (int h = 0; h < c->n_hinges(); ++h) {
+          int a, m, b;
+          c->hinge(h, a, m, b);
+          (*kpl_)[m] = u(sim.rng());
+        }
+    }
+    setup(sim);
+    // the starting state is the reference of the work accounting
+    for (auto* c : chains_)
+      for (int h = 0; h < c->n_hinges(); ++h) {
+        int a, m, b;
+        c->hinge(h, a, m, b);
+        const double l0 = rest(*c, h);
+        const double kappa = turning_angle(sim.nodes().x, a, m, b) / l0;
+        double kpl = (*kpl_)[m];  // a copy: no flow is committed here
+        double stored = 0.0;
+        moment(kappa, kpl, k_ * l0, &stored);
+        recoverable0_ += stored * l0;
+      }
+    recoverable_ = recoverable0_;
+  }
+  void setup(Simulation& sim) override {
+    chains_ = select_chains(sim, names_);
+    auto& n = sim.nodes();
+    kpl_ = n.find<double>("bend.plastic_curvature");
+  }
+  const char* energy_category() const override { return "bend"; }
+
+  // Moment at curvature kappa; updates kappa_pl by plastic flow (MODELS.md §2.2,
+  // steps 1-4). *stored gets the recoverable energy per unit rest length: the
+  // integral of M(x) at fixed kappa_pl from the zero-moment point x0 (in the linear
+  // zone, thanks to the guard) to x, i.e. 1/2 K_e (x - x0)^2 -+ c (x - x_e)^3 / 3.
+  // *dissipated gets the energy per unit rest length that this step's plastic flow
+  // made unrecoverable: with W the work along the path (elastic to the yield point
+  // x_y, then flow along M = g(x_y) + K_h kappa_pl) and E the recoverable energy,
+  // W - dE = dkappa_pl (g(x_y) - K_h x_y) + 1/2 K_h (1 - K_h/K_e) d(kappa_pl^2).
+  double moment(double kappa, double& kpl, double Ke, double* stored = nullptr,
+                double* dissipated = nullptr) const {
+    const double Kh = ratio_ * Ke;
+    const double x0 = -Kh * kpl / Ke;
+    double xp = ky_, xm = -ky_;
+    if (guard_) {
+      xp = std::max(ky_, x0 + delta_);
+      xm = std::min(-ky_, x0 - delta_);
+    }
+    const double kpl_old = kpl;
+    double x = kappa - kpl;
+    if (x > xp) {
+      kpl += x - xp;
+      x = xp;
+    } else if (x < xm) {
+      kpl += x - xm;
+      x = xm;
+    }
+    double g = Ke * x, cubic = 0.0;
+    if (delta_ > 0) {
+      const double xe = xp - delta_, xem = xm + delta_, c = (Ke - Kh) / (2 * delta_);
+      if (x > xe) {
+        g -= c * (x - xe) * (x - xe);
+        cubic = -c * std::pow(x - xe, 3) / 3.0;
+      } else if (x < xem) {
+        g += c * (x - xem) * (x - xem);
+        cubic = c * std::pow(x - xem, 3) / 3.0;
+      }
+    }
+    const double M = g + Kh * kpl;
+    if (dissipated) {
+      *dissipated = kpl == kpl_old ? 0.0
+                                   : (kpl - kpl_old) * (g - Kh * x) +
+                                         0.5 * Kh * (1 - Kh / Ke) * (kpl * kpl - kpl_old * kpl_old);
+    }
+    if (stored) {
+      // zero-moment point of the (possibly just updated) branch
+      const double z = -Kh * kpl / Ke;
+      *stored = 0.5 * Ke * (x - z) * (x - z) + cubic;
+    }
+    return M;
+  }
+
+  double compute(Simulation& sim) override {
+    if (chains_.empty()) setup(sim);
+    auto& x = sim.nodes().x;
+    auto& f = sim.nodes().f;
+    double energy = 0.0;
+    for (auto* c : chains_) {
+      const int nh = c->n_hinges();
+      for (int h = 0; h < nh; ++h) {
+        int a, m, b;
+        c->hinge(h, a, m, b);
+        const double l0 = rest(*c, h), Ke = k_ * l0;
+        const Eigen::Vector2d e0 = (x[m] - x[a]).head<2>();
+        const Eigen::Vector2d e1 = (x[b] - x[m]).head<2>();
+        const double zeta = std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
+        const double kappa = zeta / l0;
+        double& kpl = (*kpl_)[m];
+        double stored = 0.0, lost = 0.0;
+        const double M = moment(kappa, kpl, Ke, &stored, &lost);
+        dissipated_ += lost * l0;
+        const Eigen::Vector2d gb = Eigen::Vector2d(-e1.y(), e1.x()) / e1.squaredNorm();
+        const Eigen::Vector2d ga = Eigen::Vector2d(-e0.y(), e0.x()) / e0.squaredNorm();
+        f[b].head<2>() -= M * gb;
+        f[a].head<2>() -= M * ga;
+        f[m].head<2>() += M * (ga + gb);
+        energy += stored * l0;
+      }
+    }
+    recoverable_ = energy;
+    return energy;
+  }
+  double max_frequency(const Simulation& sim) const override {
+    auto ch = select_chains(sim, names_);
+    if (ch.empty()) return 0.0;
+    // the elastic slope is the stiffest (K_h < K_e): as bend2d
+    return 4.0 * std::sqrt(k_ / min_mass(sim, ch)) / min_rest(ch);
+  }
+  std::vector<std::string> value_keys() const override {
+    return {"dissipated", "work", "recoverable"};
+  }
+  double value(const std::string& key) const override {
+    if (key == "work") return dissipated_ + recoverable_ - recoverable0_;
+    if (key == "recoverable") return recoverable_;
+    if (key == "dissipated") return dissipated_;
+    return BondStyle::value(key);
+  }
+  void save_state(StateMap& st) const override {
+    st["energy"] = {dissipated_, recoverable_, recoverable0_};
+  }
+  void load_state(const StateMap& st) override {
+    auto& w = st.at("energy");
+    dissipated_ = w[0];
+    recoverable_ = w[1];
+    recoverable0_ = w[2];
+  }
+
+ private:
+  static double turning_angle(const std::vector<Vec3>& x, int a, int m, int b) {
+    const Eigen::Vector2d e0 = (x[m] - x[a]).head<2>(), e1 = (x[b] - x[m]).head<2>();
+    return std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
+  }
+  // rest length that a hinge stands for: the mean of its two edges
+  static double rest(const Chain& c, int h) {
+    const int ne = c.n_edges();
+    const int e_prev = c.closed ? (h - 1 + ne) % ne : h;
+    const int e_next = c.closed ? h : h + 1;
+    return 0.5 * (c.rest_length[e_prev] + c.rest_length[e_next]);
+  }
+
+  double k_, ky_, ratio_, delta_;
+  bool guard_;
+  std::vector<std::string> names_;
+  std::vector<const Chain*> chains_;
+  Property<double>* kpl_ = nullptr;
+  double dissipated_ = 0.0, recoverable_ = 0.0, recoverable0_ = 0.0;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::BondStyle, "bend2d/hysteresis", slender::BendHysteresisBond)

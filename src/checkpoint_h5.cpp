@@ -18,16 +18,23 @@ void unflat3(const std::vector<double>& d, std::vector<Vec3>& v) {
   v.resize(d.size() / 3);
   for (size_t i = 0; i < v.size(); ++i) v[i] = Vec3(d[3 * i], d[3 * i + 1], d[3 * i + 2]);
 }
+// Style ids such as "contact/node-edge" hold '/', which HDF5 reads as a path.
+std::string group_name(const Style& s) {
+  std::string n = s.id();
+  for (char& c : n)
+    if (c == '/') c = '|';
+  return n;
+}
 void save_style(hid_t parent, const Style& s) {
   StateMap st;
   s.save_state(st);
   if (st.empty()) return;
-  auto g = h5::create_group(parent, s.id());
+  auto g = h5::create_group(parent, group_name(s));
   for (auto& [k, v] : st) h5::write_doubles(g, k, v, {v.size()});
 }
 void load_style(hid_t parent, Style& s) {
-  if (!h5::exists(parent, s.id())) return;
-  auto g = h5::open_group(parent, s.id());
+  if (!h5::exists(parent, group_name(s))) return;
+  auto g = h5::open_group(parent, group_name(s));
   StateMap st;
   for (auto& k : h5::children(g)) st[k] = h5::read_doubles(g, k);
   s.load_state(st);

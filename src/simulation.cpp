@@ -105,6 +105,7 @@ std::string unique_id(const std::vector<std::unique_ptr<T>>& list, const std::st
 BondStyle& Simulation::add_bond(const std::string& style, const RawParams& p) {
   auto b = Registry<BondStyle>::create(style, *this, p);
   b->set_id(unique_id(bonds_, style));
+  b->attach(*this);
   bonds_.push_back(std::move(b));
   forces_valid = false;
   schedule_dirty_ = true;
@@ -113,6 +114,7 @@ BondStyle& Simulation::add_bond(const std::string& style, const RawParams& p) {
 PairStyle& Simulation::add_pair(const std::string& style, const RawParams& p) {
   auto b = Registry<PairStyle>::create(style, *this, p);
   b->set_id(unique_id(pairs_, style));
+  b->attach(*this);
   pairs_.push_back(std::move(b));
   forces_valid = false;
   schedule_dirty_ = true;
@@ -135,6 +137,7 @@ FixStyle& Simulation::add_fix(const std::string& id, const std::string& style, c
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto f = Registry<FixStyle>::create(style, *this, p);
   f->set_id(id);
+  f->attach(*this);
   fixes_.push_back(std::move(f));
   forces_valid = false;
   schedule_dirty_ = true;
@@ -160,6 +163,7 @@ ComputeStyle& Simulation::add_compute(const std::string& id, const std::string& 
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto c = Registry<ComputeStyle>::create(style, *this, p);
   c->set_id(id);
+  c->attach(*this);
   computes_.push_back(std::move(c));
   return *computes_.back();
 }
@@ -173,6 +177,7 @@ DumpStyle& Simulation::add_dump(const std::string& id, const std::string& style,
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto d = Registry<DumpStyle>::create(style, *this, p);
   d->set_id(id);
+  d->attach(*this);
   dumps_.push_back(std::move(d));
   return *dumps_.back();
 }

@@ -24,6 +24,9 @@ class Style {
   const std::string& id() const { return id_; }
   void set_id(const std::string& s) { id_ = s; }
 
+  // Called once the style has its id, before any run: the place to request node
+  // properties whose names depend on the id.
+  virtual void attach(Simulation&) {}
   virtual void save_state(StateMap&) const {}
   virtual void load_state(const StateMap&) {}
   // Scalars this style offers to thermo as "<id>.<key>".

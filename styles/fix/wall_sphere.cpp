@@ -1,9 +1,10 @@
-// Rigid spherical (3D) or circular (2D) wall with a penalty normal force.
-// Overlap delta = |x - c| + d/2 - R (inside) or R + d/2 - |x - c| (outside);
-// F = k delta^p along the wall normal, E = k delta^(p+1) / (p+1). p = 2 is the
-// quadratic law of MODELS.md §2.3; friction comes with the contact styles.
+// Rigid spherical (3D) or circular (2D) wall: the contact law of MODELS.md §2.3
+// (normal repulsion k delta^p, dashpot, stick-slip friction) against a fixed body.
+// Overlap delta = |x - c| + d/2 - R (inside) or R + d/2 - |x - c| (outside). The
+// friction history is a node property, allocated only when mu_static > 0.
 #include <cmath>
 
+#include "contact_law.hpp"
 #include "registry.hpp"
 #include "simulation.hpp"
 
@@ -13,14 +14,11 @@ class SphereWallFix : public FixStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("fix", name,
-                "rigid spherical (3D) / circular (2D) wall with a penalty normal force");
+                "rigid spherical (3D) / circular (2D) wall: penalty normal force, dashpot, "
+                "stick-slip friction (MODELS.md §2.3)");
     s.vector("center", "centre of the wall").def(std::vector<double>{0, 0, 0}).length(2, 3);
     s.real("radius", "wall radius").required().positive();
-    s.real("stiffness", "penalty stiffness k").required().positive();
-    s.real("exponent", "force law F = k delta^p: 1 linear, 2 quadratic (MODELS.md §2.3)")
-        .def(1.0)
-        .min(1.0)
-        .max(3.0);
+    ContactLaw::declare(s);
     s.real("diameter", "node (wire) diameter d: contact starts at |x-c| = R - d/2")
         .def(0.0)
         .nonnegative();
@@ -33,32 +31,58 @@ class SphereWallFix : public FixStyle {
   SphereWallFix(Simulation& sim, const ParamValues& p)
       : c_(p.vec3("center")),
         r_(p.real("radius")),
-        k_(p.real("stiffness")),
-        p_(p.real("exponent")),
         d_(p.real("diameter")),
+        law_(ContactLaw::from(
+            p, p.real("diameter") > 0 ? p.real("diameter") : 0.01 * p.real("radius"))),
         inside_(p.str("side") == "inside"),
         group_(p.str("group")) {
     sim.group(group_);
     if (sim.dimension() == 2) c_.z() = 0.0;
   }
   unsigned stages() const override { return kPostForce | kSetup; }
-  void setup(Simulation& sim) override { nodes_ = sim.group(group_); }
+  // The friction history is named after the fix id, known from attach() on.
+  void attach(Simulation& sim) override { bind(sim); }
+  void setup(Simulation& sim) override {
+    nodes_ = sim.group(group_);
+    bind(sim);
+  }
+  void bind(Simulation& sim) {
+    if (law_.frictional() && !xi_) {
+      xi_ = &sim.nodes().require<Vec3>("wall:" + id() + ".xi", Vec3::Zero());
+      state_ = &sim.nodes().require<int>("wall:" + id() + ".state", 0);
+    }
+  }
   double post_force(Simulation& sim) override {
+    if (law_.frictional() && !xi_) bind(sim);
     auto& x = sim.nodes().x;
+    auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
     double e = 0.0;
     total_ = 0.0;
     contacts_ = 0;
     for (int i : nodes_) {
-      Vec3 rel = x[i] - c_;
+      const Vec3 rel = x[i] - c_;
       const double dist = rel.norm();
       const double delta = inside_ ? dist + 0.5 * d_ - r_ : r_ + 0.5 * d_ - dist;
-      if (delta <= 0.0 || dist == 0.0) continue;
+      FrictionState st;
+      if (law_.frictional()) {
+        st.xi = (*xi_)[i];
+        st.stick = (*state_)[i] & 1;
+        st.active = (*state_)[i] & 2;
+      }
+      if (delta <= 0.0 || dist == 0.0) {
+        if (law_.frictional()) (*state_)[i] = 0, (*xi_)[i].setZero();
+        continue;
+      }
       const Vec3 n = (inside_ ? -1.0 : 1.0) * rel / dist;  // pushes back into the domain
-      const double mag = k_ * std::pow(delta, p_);
-      f[i] += mag * n;
-      e += k_ * std::pow(delta, p_ + 1.0) / (p_ + 1.0);
-      total_ += mag;
+      double fn = 0.0;
+      f[i] += law_.force(delta, n, v[i], sim.dt, st, &fn);
+      if (law_.frictional()) {
+        (*xi_)[i] = st.xi;
+        (*state_)[i] = (st.stick ? 1 : 0) | (st.active ? 2 : 0);
+      }
+      e += law_.energy(delta);
+      total_ += fn;
       ++contacts_;
     }
     return e;
@@ -67,10 +91,11 @@ class SphereWallFix : public FixStyle {
     double mmin = 1e300;
     for (int i : sim.group(group_)) mmin = std::min(mmin, sim.nodes().mass[i]);
     if (mmin >= 1e300) return 0.0;
-    // stiffness dF/ddelta at a reference overlap of one diameter (or 1% of R)
-    const double dref = d_ > 0 ? d_ : 0.01 * r_;
-    const double kt = p_ * k_ * std::pow(dref, p_ - 1.0);
-    return std::sqrt(kt / mmin);
+    // stiffness at a reference overlap of a tenth of a diameter (or 0.1% of R)
+    const double dref = d_ > 0 ? 0.1 * d_ : 1e-3 * r_;
+    const double k =
+        law_.tangent_stiffness(dref) + (law_.frictional() ? law_.stick_stiffness : 0.0);
+    return std::sqrt(k / mmin);
   }
   std::vector<std::string> value_keys() const override { return {"force", "contacts"}; }
   double value(const std::string& key) const override {
@@ -81,10 +106,13 @@ class SphereWallFix : public FixStyle {
 
  private:
   Vec3 c_;
-  double r_, k_, p_, d_;
+  double r_, d_;
+  ContactLaw law_;
   bool inside_;
   std::string group_;
   std::vector<int> nodes_;
+  Property<Vec3>* xi_ = nullptr;
+  Property<int>* state_ = nullptr;
   double total_ = 0.0;
   int contacts_ = 0;
 };

@@ -40,7 +40,10 @@ TEST(SphereWallFix, QuadraticLawValueAndOutsideSide) {
   Simulation out(2, 1);
   out.add_chain("w", {Vec3(1.2, 0, 0), Vec3(5, 0, 0)}, 1.0, false);
   out.add_fix("post", "wall/circle",
-              P({{"radius", 1.0}, {"stiffness", 10.0}, {"side", std::string("outside")}}));
+              P({{"radius", 1.0},
+                 {"stiffness", 10.0},
+                 {"exponent", 1.0},
+                 {"side", std::string("outside")}}));
   out.compute_forces();
   EXPECT_EQ(out.nodes().f[0].norm(), 0.0);  // at 1.2 > R, no overlap with a zero diameter
   out.nodes().x[0] = Vec3(0.8, 0, 0);

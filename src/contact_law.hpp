@@ -1,0 +1,109 @@
+// The contact law shared by wire-wire (pair) and wire-wall (fix) contacts,
+// MODELS.md §2.3: normal repulsion k (d - dist)^p with a normal dashpot (never
+// attractive), and stick-slip Coulomb friction with a tangential stick spring.
+#pragma once
+
+#include <cmath>
+
+#include "nodes.hpp"
+#include "params.hpp"
+
+namespace slender {
+
+// Per-contact history: a stuck contact carries the stick-spring elongation xi.
+struct FrictionState {
+  Vec3 xi = Vec3::Zero();
+  bool stick = false;
+  bool active = false;  // in contact at the last evaluation
+};
+
+struct ContactLaw {
+  double stiffness = 0.0;        // k_c
+  double exponent = 2.0;         // p: 2 is the thesis' quadratic law
+  double damping = 0.0;          // d_c, normal dashpot coefficient
+  double mu_static = 0.0;        // mu_st
+  double mu_dynamic = 0.0;       // mu_d
+  double stick_stiffness = 0.0;  // k_st
+  double slip_velocity = 0.0;    // v_th: a slipping contact slower than this sticks again
+
+  // Declares the law's parameters on a style's spec (shared by pair and wall).
+  static void declare(ParamSpec& s) {
+    s.real("stiffness", "normal stiffness k_c: F_N = k_c overlap^p").required().positive();
+    s.real("exponent", "normal force law exponent p (2: quadratic, MODELS.md §2.3)")
+        .def(2.0)
+        .min(1.0)
+        .max(3.0);
+    s.real("damping", "normal dashpot d_c (force per normal velocity)").def(0.0).nonnegative();
+    s.real("mu_static", "static friction coefficient mu_st (0: frictionless)")
+        .def(0.0)
+        .nonnegative();
+    s.real("mu_dynamic", "dynamic friction coefficient mu_d (default 0.9 mu_static)").nonnegative();
+    s.real("stick_stiffness", "tangential stick spring k_st (default k_c d / 10)").positive();
+    s.real("slip_velocity", "v_th: slipping contacts slower than this stick again")
+        .def(1e-4)
+        .nonnegative();
+  }
+  static ContactLaw from(const ParamValues& p, double length_scale) {
+    ContactLaw c;
+    c.stiffness = p.real("stiffness");
+    c.exponent = p.real("exponent");
+    c.damping = p.real("damping");
+    c.mu_static = p.real("mu_static");
+    c.mu_dynamic = p.has("mu_dynamic") ? p.real("mu_dynamic") : 0.9 * c.mu_static;
+    c.stick_stiffness =
+        p.has("stick_stiffness") ? p.real("stick_stiffness") : 0.1 * c.stiffness * length_scale;
+    c.slip_velocity = p.real("slip_velocity");
+    if (c.mu_dynamic > c.mu_static)
+      throw InputError("contact law: mu_dynamic (" + std::to_string(c.mu_dynamic) +
+                       ") must not exceed mu_static (" + std::to_string(c.mu_static) + ")");
+    return c;
+  }
+  bool frictional() const { return mu_static > 0.0; }
+
+  // Normal force magnitude without the dashpot, and the matching energy.
+  double elastic_force(double overlap) const { return stiffness * std::pow(overlap, exponent); }
+  double energy(double overlap) const {
+    return stiffness * std::pow(overlap, exponent + 1.0) / (exponent + 1.0);
+  }
+  // Stiffness dF/doverlap at a reference overlap, for the stable time step.
+  double tangent_stiffness(double overlap) const {
+    return exponent * stiffness * std::pow(overlap, exponent - 1.0);
+  }
+
+  // Force on the first body for an overlap along the unit normal n (pointing from
+  // the second body to the first) with relative velocity v = v_1 - v_2. Updates the
+  // friction history; returns the normal force magnitude in *normal.
+  Vec3 force(double overlap, const Vec3& n, const Vec3& v, double dt, FrictionState& st,
+             double* normal = nullptr) const {
+    const double vn = v.dot(n);
+    const double fn = std::max(0.0, elastic_force(overlap) - damping * vn);
+    if (normal) *normal = fn;
+    Vec3 f = fn * n;
+    if (!frictional()) {
+      st.active = true;
+      return f;
+    }
+    const Vec3 vt = v - vn * n;
+    const double vt_norm = vt.norm();
+    if (!st.active || (!st.stick && vt_norm < slip_velocity)) {
+      st.stick = true;
+      st.xi.setZero();
+    }
+    st.active = true;
+    if (st.stick) {
+      st.xi += vt * dt;
+      st.xi -= st.xi.dot(n) * n;  // the spring lies in the tangent plane
+      Vec3 ft = -stick_stiffness * st.xi;
+      if (ft.norm() > mu_static * fn) {
+        st.stick = false;
+        st.xi.setZero();
+      } else {
+        return f + ft;
+      }
+    }
+    if (vt_norm > 0.0) f -= (mu_dynamic * fn / vt_norm) * vt;
+    return f;
+  }
+};
+
+}  // namespace slender

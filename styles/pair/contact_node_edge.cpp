@@ -1,0 +1,307 @@
+// Node-edge contact of 2D wires (MODELS.md §2.3). Broad phase: linked cells over
+// the nodes, a pair list of (node, edge) closer than d + skin, rebuilt when some
+// node moved more than skin/2 since the last build (or every N steps if asked).
+// Dense phase: closest point p = (1-t) x_j + t x_{j+1}, overlap d - |x_i - p|,
+// the shared contact law (normal force, dashpot, stick-slip friction), and the
+// force split by the lever rule: node i gets F, the edge nodes -(1-t)F and -tF,
+// so momentum is conserved exactly. Friction history lives in the pair list.
+#include <algorithm>
+#include <cmath>
+
+#include "chain_select.hpp"
+#include "contact_law.hpp"
+#include "registry.hpp"
+
+namespace slender {
+
+class NodeEdgeContactPair : public PairStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("pair", name,
+                "2D node-edge contact: quadratic repulsion, dashpot, stick-slip Coulomb friction "
+                "(MODELS.md §2.3)");
+    s.real("diameter", "wire diameter d: contact when a node is closer than d to an edge")
+        .def(1.0)
+        .positive();
+    ContactLaw::declare(s);
+    s.real("skin", "pair-list skin: pairs closer than d + skin are listed").def(1.0).positive();
+    s.integer("rebuild_every", "rebuild the pair list every N steps (0: when a node moved skin/2)")
+        .def(0.0)
+        .min(0);
+    s.integer("exclude", "skip edges within this many nodes along the same chain").def(2.0).min(0);
+    s.add("chains", ParamType::StringList, "chains that touch each other (default: all)")
+        .def(std::vector<std::string>{});
+    return s;
+  }
+
+  NodeEdgeContactPair(Simulation& sim, const ParamValues& p)
+      : d_(p.real("diameter")),
+        law_(ContactLaw::from(p, p.real("diameter"))),
+        skin_(p.real("skin")),
+        every_(p.integer("rebuild_every")),
+        exclude_(static_cast<int>(p.integer("exclude"))),
+        names_(p.strings("chains")) {
+    if (sim.dimension() != 2)
+      throw InputError("pair style 'contact/node-edge' needs a 2D simulation (dimension = 2)");
+    select_chains(sim, names_);
+  }
+
+  void setup(Simulation& sim) override {
+    chains_ = select_chains(sim, names_);
+    edges_.clear();
+    const size_t n = sim.nodes().size();
+    chain_of_.assign(n, -1);
+    pos_in_chain_.assign(n, -1);
+    for (size_t c = 0; c < chains_.size(); ++c) {
+      const Chain& ch = *chains_[c];
+      for (int k = 0; k < ch.n_nodes(); ++k) {
+        chain_of_[ch.nodes[k]] = static_cast<int>(c);
+        pos_in_chain_[ch.nodes[k]] = k;
+      }
+      for (int e = 0; e < ch.n_edges(); ++e)
+        edges_.push_back(Edge{ch.edge_tail(e), ch.edge_head(e), static_cast<int>(c), e});
+    }
+    need_build_ = true;
+  }
+
+  double compute(Simulation& sim) override {
+    if (edges_.empty() && !chains_.empty()) setup(sim);
+    if (chain_of_.size() != sim.nodes().size() || topology_changed(sim)) setup(sim);
+    if (need_build_ || due(sim)) build(sim);
+    auto& x = sim.nodes().x;
+    auto& v = sim.nodes().v;
+    auto& f = sim.nodes().f;
+    const double dt = sim.dt;
+    double energy = 0.0;
+    contacts_ = 0;
+    for (auto& e : list_) {
+      e.prev = e.st.active;
+      e.st.active = false;
+    }
+    for (size_t k = 0; k < list_.size(); ++k) {
+      Entry& c = list_[k];
+      const Edge& ed = edges_[c.edge];
+      const Vec3 seg = x[ed.b] - x[ed.a];
+      const double len2 = seg.squaredNorm();
+      double t = len2 > 0 ? (x[c.node] - x[ed.a]).dot(seg) / len2 : 0.0;
+      t = std::clamp(t, 0.0, 1.0);
+      // a vertex shared by two edges is counted once, through the earlier edge
+      if (t == 0.0 && (ed.index > 0 || chains_[static_cast<size_t>(ed.chain)]->closed)) continue;
+      const Vec3 p = x[ed.a] + t * seg;
+      const Vec3 r = x[c.node] - p;
+      const double dist = r.norm();
+      if (dist >= d_ || dist == 0.0) {
+        c.st.stick = false;
+        c.st.xi.setZero();
+        continue;
+      }
+      const Vec3 nrm = r / dist;
+      const Vec3 vrel = v[c.node] - ((1 - t) * v[ed.a] + t * v[ed.b]);
+      c.st.active = c.prev;
+      if (!c.prev && law_.frictional()) hand_over(k);
+      const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, c.st);
+      f[c.node] += F;
+      f[ed.a] -= (1 - t) * F;
+      f[ed.b] -= t * F;
+      energy += law_.energy(d_ - dist);
+      ++contacts_;
+    }
+    return energy;
+  }
+
+  double max_frequency(const Simulation& sim) const override {
+    double m = 1e300;
+    for (auto* c : select_chains(sim, names_))
+      for (int i : c->nodes) m = std::min(m, sim.nodes().mass[i]);
+    if (m >= 1e300) return 0.0;
+    // two bodies on the contact spring at an overlap of a tenth of a diameter
+    const double k =
+        law_.tangent_stiffness(0.1 * d_) + (law_.frictional() ? law_.stick_stiffness : 0.0);
+    return std::sqrt(2.0 * k / m);
+  }
+  std::vector<std::string> value_keys() const override { return {"contacts", "pairs", "builds"}; }
+  double value(const std::string& key) const override {
+    if (key == "contacts") return contacts_;
+    if (key == "pairs") return static_cast<double>(list_.size());
+    if (key == "builds") return builds_;
+    return PairStyle::value(key);
+  }
+  void save_state(StateMap& st) const override {
+    std::vector<double> flat;
+    for (auto& e : list_)
+      flat.insert(flat.end(), {double(e.node), double(e.edge), e.st.xi.x(), e.st.xi.y(),
+                               e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0});
+    st["history"] = flat;
+    st["counters"] = {builds_, static_cast<double>(last_build_step_)};
+  }
+  void load_state(const StateMap& st) override {
+    list_.clear();
+    auto& h = st.at("history");
+    for (size_t k = 0; k + 6 <= h.size(); k += 6) {
+      Entry e;
+      e.node = static_cast<int>(h[k]);
+      e.edge = static_cast<int>(h[k + 1]);
+      e.st.xi = Vec3(h[k + 2], h[k + 3], 0);
+      e.st.stick = h[k + 4] != 0;
+      e.st.active = h[k + 5] != 0;
+      list_.push_back(e);
+    }
+    builds_ = st.at("counters")[0];
+    last_build_step_ = static_cast<long>(st.at("counters")[1]);
+  }
+
+ private:
+  struct Edge {
+    int a, b, chain, index;
+  };
+  struct Entry {
+    int node = 0, edge = 0;
+    FrictionState st;
+    bool prev = false;
+  };
+
+  bool topology_changed(const Simulation&) const {
+    size_t ne = 0;
+    for (auto* c : chains_) ne += static_cast<size_t>(c->n_edges());
+    return ne != edges_.size();
+  }
+  bool due(const Simulation& sim) const {
+    if (every_ > 0) return sim.step - last_build_step_ >= every_;
+    const double lim = 0.25 * skin_ * skin_;  // (skin/2)^2
+    auto& x = sim.nodes().x;
+    for (size_t i = 0; i < x_build_.size(); ++i)
+      if ((x[i] - x_build_[i]).squaredNorm() > lim) return true;
+    return false;
+  }
+  bool excluded(int node, const Edge& e) const {
+    if (chain_of_[node] != e.chain) return false;
+    const Chain& ch = *chains_[e.chain];
+    const int n = ch.n_nodes(), i = pos_in_chain_[node];
+    auto gap = [&](int j) {
+      int g = std::abs(i - j);
+      return ch.closed ? std::min(g, n - g) : g;
+    };
+    return std::min(gap(e.index), gap((e.index + 1) % n)) <= exclude_;
+  }
+
+  // Linked cells over the nodes; each edge is filed under its midpoint's cell.
+  void build(Simulation& sim) {
+    auto& x = sim.nodes().x;
+    const double cutoff = d_ + skin_;
+    double lmax = 0.0;
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (auto& e : edges_) {
+      lmax = std::max(lmax, (x[e.b] - x[e.a]).norm());
+      for (int i : {e.a, e.b}) {
+        lo = lo.cwiseMin(x[i].head<2>());
+        hi = hi.cwiseMax(x[i].head<2>());
+      }
+    }
+    const double cs = cutoff + 0.5 * lmax;
+    const size_t nedges = edges_.size();
+    const int nx = std::clamp(static_cast<int>((hi.x() - lo.x()) / cs) + 1, 1, 1 << 14);
+    const int ny = std::clamp(static_cast<int>((hi.y() - lo.y()) / cs) + 1, 1, 1 << 14);
+    auto cell_of = [&](const Vec3& p, int& cx, int& cy) {
+      cx = std::clamp(static_cast<int>((p.x() - lo.x()) / cs), 0, nx - 1);
+      cy = std::clamp(static_cast<int>((p.y() - lo.y()) / cs), 0, ny - 1);
+    };
+    // counting sort of edges into cells
+    cell_start_.assign(static_cast<size_t>(nx) * ny + 1, 0);
+    edge_cell_.resize(nedges);
+    for (size_t k = 0; k < nedges; ++k) {
+      int cx, cy;
+      cell_of(0.5 * (x[edges_[k].a] + x[edges_[k].b]), cx, cy);
+      edge_cell_[k] = cy * nx + cx;
+      ++cell_start_[static_cast<size_t>(edge_cell_[k]) + 1];
+    }
+    for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+    cell_items_.resize(nedges);
+    fill_ = cell_start_;
+    for (size_t k = 0; k < nedges; ++k)
+      cell_items_[static_cast<size_t>(fill_[static_cast<size_t>(edge_cell_[k])]++)] =
+          static_cast<int>(k);
+
+    old_.swap(list_);
+    list_.clear();
+    const double cut2 = cutoff * cutoff;
+    for (size_t i = 0; i < chain_of_.size(); ++i) {
+      if (chain_of_[i] < 0) continue;
+      const int node = static_cast<int>(i);
+      int cx, cy;
+      cell_of(x[i], cx, cy);
+      const size_t first = list_.size();
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int gx = cx + dx, gy = cy + dy;
+          if (gx < 0 || gy < 0 || gx >= nx || gy >= ny) continue;
+          const size_t cell = static_cast<size_t>(gy) * nx + gx;
+          for (int k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+            const int eid = cell_items_[static_cast<size_t>(k)];
+            const Edge& e = edges_[static_cast<size_t>(eid)];
+            if (excluded(node, e)) continue;
+            const Vec3 seg = x[e.b] - x[e.a];
+            const double len2 = seg.squaredNorm();
+            const double t = len2 > 0 ? std::clamp((x[i] - x[e.a]).dot(seg) / len2, 0.0, 1.0) : 0.0;
+            if ((x[i] - x[e.a] - t * seg).squaredNorm() < cut2) {
+              Entry en;
+              en.node = node;
+              en.edge = eid;
+              list_.push_back(en);
+            }
+          }
+        }
+      std::sort(list_.begin() + static_cast<long>(first), list_.end(),
+                [](const Entry& a, const Entry& b) { return a.edge < b.edge; });
+    }
+    // carry the friction history of pairs that stay listed (both lists are sorted)
+    size_t j = 0;
+    for (auto& e : list_) {
+      while (j < old_.size() &&
+             (old_[j].node < e.node || (old_[j].node == e.node && old_[j].edge < e.edge)))
+        ++j;
+      if (j < old_.size() && old_[j].node == e.node && old_[j].edge == e.edge) e.st = old_[j].st;
+    }
+    x_build_ = x;
+    last_build_step_ = sim.step;
+    need_build_ = false;
+    builds_ += 1;
+  }
+
+  // A new contact whose node was touching the neighbouring edge of the same chain
+  // at the last evaluation takes over that contact's stick state (MODELS.md §2.3).
+  void hand_over(size_t k) {
+    Entry& c = list_[k];
+    const Edge& ed = edges_[static_cast<size_t>(c.edge)];
+    for (size_t j = k; j-- > 0 && list_[j].node == c.node;) try_take(c, ed, list_[j]);
+    for (size_t j = k + 1; j < list_.size() && list_[j].node == c.node; ++j)
+      try_take(c, ed, list_[j]);
+  }
+  void try_take(Entry& c, const Edge& ed, const Entry& other) const {
+    const Edge& eo = edges_[static_cast<size_t>(other.edge)];
+    if (!other.prev || eo.chain != ed.chain || std::abs(eo.index - ed.index) != 1) return;
+    c.st.xi = other.st.xi;
+    c.st.stick = other.st.stick;
+    c.st.active = true;
+  }
+
+  double d_;
+  ContactLaw law_;
+  double skin_;
+  long every_;
+  int exclude_;
+  std::vector<std::string> names_;
+  std::vector<const Chain*> chains_;
+  std::vector<Edge> edges_;
+  std::vector<int> chain_of_, pos_in_chain_;
+  std::vector<Entry> list_, old_;
+  std::vector<int> cell_start_, fill_, cell_items_, edge_cell_;
+  std::vector<Vec3> x_build_;
+  bool need_build_ = true;
+  long last_build_step_ = 0;
+  double builds_ = 0;
+  int contacts_ = 0;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::PairStyle, "contact/node-edge", slender::NodeEdgeContactPair)

@@ -1,0 +1,204 @@
+// Unit tests of the shared contact law through contact/node-edge and wall/circle
+// (MODELS.md §2.3).
+#include <cmath>
+
+#include "helpers.hpp"
+
+using namespace std::string_literals;
+
+using namespace slender;
+using namespace slender::test;
+
+namespace {
+
+// Two wires lying across each other with several overlapping node-edge pairs.
+void crossing_scene(Simulation& sim) {
+  std::vector<Vec3> a, b;
+  for (int i = 0; i < 8; ++i) a.emplace_back(i * 0.9, 0.05 * std::sin(i), 0);
+  for (int i = 0; i < 8; ++i) b.emplace_back(0.2 + i * 0.85, 0.75 + 0.04 * std::cos(2 * i), 0);
+  sim.add_chain("a", a, 1.0, false);
+  sim.add_chain("b", b, 1.0, false);
+}
+
+}  // namespace
+
+TEST(NodeEdgeContactPair, NormalForceMatchesEnergyGradient) {
+  for (double p : {1.0, 2.0}) {
+    Simulation sim(2, 1);
+    crossing_scene(sim);
+    sim.add_pair("contact/node-edge", P({{"diameter", 1.0}, {"stiffness", 1e3}, {"exponent", p}}));
+    sim.compute_forces();
+    EXPECT_GE(sim.pairs()[0]->value("contacts"), 6.0);
+    EXPECT_GT(sim.energies().at("contact"), 0.0);
+    EXPECT_LT(fd_force_error(sim, 1e-7), 1e-5) << "p = " << p;
+  }
+}
+
+TEST(NodeEdgeContactPair, ConservesMomentumWithFrictionAndDamping) {
+  Simulation sim(2, 1);
+  crossing_scene(sim);
+  std::mt19937 g(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (auto& v : sim.nodes().v) v = Vec3(u(g), u(g), 0);
+  sim.dt = 0.01;
+  sim.add_pair("contact/node-edge", P({{"stiffness", 1e3},
+                                       {"damping", 5.0},
+                                       {"mu_static", 0.6},
+                                       {"mu_dynamic", 0.5},
+                                       {"slip_velocity", 0.5}}));
+  for (int rep = 0; rep < 5; ++rep) {  // stick springs build up over evaluations
+    sim.compute_forces();
+    Vec3 sum = Vec3::Zero();
+    double fmax = 0;
+    for (auto& f : sim.nodes().f) {
+      sum += f;
+      fmax = std::max(fmax, f.norm());
+    }
+    EXPECT_GT(fmax, 1.0);
+    EXPECT_LT(sum.norm(), 1e-13 * fmax);
+    for (auto& x : sim.nodes().x) x += 0.002 * Vec3(1, -0.5, 0);
+  }
+}
+
+TEST(NodeEdgeContactPair, CrossingWiresDoNotPassThrough) {
+  for (double speed : {0.05, 0.2, 0.5}) {
+    Simulation sim(2, 1);
+    sim.verbose = false;
+    std::vector<Vec3> floor, stick;
+    for (int i = 0; i <= 20; ++i) floor.emplace_back(-10.0 + i, 0, 0);
+    for (int i = 0; i < 5; ++i)
+      stick.emplace_back(0.5, 3.0 + i, 0);  // vertical, falling on an edge
+    sim.add_chain("floor", floor, 1.0, false);
+    sim.add_chain("stick", stick, 1.0, false);
+    sim.add_bond("spring", P({{"k", 1000.0}}));
+    sim.add_bond("bend2d", P({{"k", 60.0}}));
+    sim.add_pair("contact/node-edge", P({{"stiffness", 1e4}, {"damping", 20.0}}));
+    sim.add_fix("hold", "clamp", P({{"group", std::string("floor")}}));
+    for (int i : sim.group("stick")) sim.nodes().v[i] = Vec3(0, -speed, 0);
+    sim.set_integrator("gear", P({{"dt", "auto"s}}));
+    double ymin = 1e9;
+    sim.run(RunOptions{static_cast<long>(8.0 / speed / 0.002), 200, [&](Simulation& s) {
+                         for (int i : s.group("stick")) ymin = std::min(ymin, s.nodes().x[i].y());
+                         return false;
+                       }});
+    // the lowest node stops at about one diameter above the floor's edge
+    EXPECT_GT(ymin, 0.5) << "speed " << speed;
+    EXPECT_LT(ymin, 1.0) << "speed " << speed;
+  }
+}
+
+namespace {
+
+// A two-node block resting on a clamped floor edge, pressed down by N per node and
+// pulled sideways by a slowly growing force; returns T/N when it starts to slide.
+double slip_ratio(double mu_s, bool wall) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  const double N = 1.0, rate = 2e-3;
+  if (wall) {
+    // nodes inside a big circle, touching it at the bottom
+    sim.add_chain("block", {Vec3(-0.5, -99.5, 0), Vec3(0.5, -99.5, 0)}, 1.0, false);
+    sim.add_fix("wall", "wall/circle",
+                P({{"radius", 100.0},
+                   {"diameter", 1.0},
+                   {"stiffness", 1e3},
+                   {"damping", 10.0},
+                   {"mu_static", mu_s},
+                   {"stick_stiffness", 100.0}}));
+  } else {
+    sim.add_chain("floor", {Vec3(-50, 0, 0), Vec3(50, 0, 0)}, 1.0, false);
+    sim.add_chain("block", {Vec3(-0.5, 0.99, 0), Vec3(0.5, 0.99, 0)}, 1.0, false);
+    sim.add_fix("hold", "clamp", P({{"group", std::string("floor")}}));
+    sim.add_pair("contact/node-edge", P({{"stiffness", 1e3},
+                                         {"damping", 10.0},
+                                         {"mu_static", mu_s},
+                                         {"stick_stiffness", 100.0}}));
+  }
+  sim.add_bond("spring", P({{"k", 100.0}, {"chains", std::vector<std::string>{"block"}}}));
+  sim.add_fix("press", "force/constant",
+              P({{"group", std::string("block")}, {"force", std::vector<double>{0, -N}}}));
+  sim.set_integrator("verlet", P({{"dt", 0.01}}));
+  sim.run(RunOptions{2000, 0, {}});  // settle under the normal load
+  // then pull sideways with a force growing from zero
+  sim.add_fix("pull", "force/constant",
+              P({{"group", std::string("block")},
+                 {"force", std::vector<double>{0, 0}},
+                 {"rate", std::vector<double>{rate, 0}}}));
+  const double x0 = sim.nodes().x[sim.group("block")[0]].x(), t0 = sim.time;
+  double ratio = -1;
+  sim.run(RunOptions{1000000, 10, [&](Simulation& s) {
+                       if (std::abs(s.nodes().x[s.group("block")[0]].x() - x0) > 0.05) {
+                         ratio = rate * (s.time - t0) / N;
+                         return true;
+                       }
+                       return false;
+                     }});
+  return ratio;
+}
+
+}  // namespace
+
+TEST(NodeEdgeContactPair, StickSlipTransitionAtTheStaticCoefficient) {
+  for (double mu : {0.2, 0.5}) {
+    const double r = slip_ratio(mu, false);
+    EXPECT_NEAR(r, mu, 0.03 * mu + 0.005) << "mu_static " << mu;
+  }
+  // frictionless: it slides at once (0.05 in t = (0.3 / rate)^(1/3) gives T/N ~ 0.011)
+  EXPECT_LT(slip_ratio(0.0, false), 0.02);
+}
+
+TEST(SphereWallFix, StickSlipTransitionAtTheStaticCoefficient) {
+  EXPECT_NEAR(slip_ratio(0.4, true), 0.4, 0.02);
+}
+
+TEST(NodeEdgeContactPair, RebuildPoliciesGiveIdenticalTrajectories) {
+  auto run = [](double every) {
+    auto sim = std::make_unique<Simulation>(2, 5);
+    sim->verbose = false;
+    // an Archimedean spiral, turns 1.3 d apart, nodes 1 d apart along it
+    std::vector<Vec3> pts;
+    double th = 0.0;
+    for (int i = 0; i < 60; ++i) {
+      const double r = 2.5 + 1.3 * th / (2 * M_PI);
+      pts.emplace_back(r * std::cos(th), r * std::sin(th), 0);
+      th += 1.0 / r;
+    }
+    sim->add_chain("w", pts, 1.0, false);
+    sim->add_bond("spring", P({{"k", 1000.0}}));
+    sim->add_bond("bend2d", P({{"k", 60.0}}));
+    sim->add_pair(
+        "contact/node-edge",
+        P({{"stiffness", 1e4}, {"damping", 10.0}, {"mu_static", 0.3}, {"rebuild_every", every}}));
+    sim->add_fix("cavity", "wall/circle",
+                 P({{"radius", 8.0}, {"diameter", 1.0}, {"stiffness", 1e4}}));
+    for (auto& v : sim->nodes().v) v = Vec3(0.5, -0.3, 0);
+    sim->set_integrator("verlet", P({{"dt", 0.004}}));
+    double most = 0;
+    sim->run(RunOptions{3000, 10, [&](Simulation& s) {
+                          most = std::max(most, s.pairs()[0]->value("contacts"));
+                          return false;
+                        }});
+    EXPECT_GE(most, 5.0);  // the wire does touch itself
+    return sim;
+  };
+  auto a = run(0.0), b = run(1.0);
+  for (size_t i = 0; i < a->nodes().size(); ++i) EXPECT_EQ(a->nodes().x[i], b->nodes().x[i]) << i;
+  EXPECT_LT(a->pairs()[0]->value("builds"), b->pairs()[0]->value("builds") / 10);
+  std::printf("pair-list builds over 3000 steps: displacement %g, every step %g\n",
+              a->pairs()[0]->value("builds"), b->pairs()[0]->value("builds"));
+}
+
+TEST(NodeEdgeContactPair, ExcludesChainNeighboursAndNeeds2D) {
+  Simulation sim(2, 1);
+  // a tight hairpin: nodes 0 and 2 are close but chain neighbours
+  sim.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.2, 0.3, 0), Vec3(1.0, 0.6, 0)}, 1.0,
+                false);
+  sim.add_pair("contact/node-edge", P({{"stiffness", 1e3}}));
+  sim.compute_forces();
+  EXPECT_EQ(sim.pairs()[0]->value("contacts"), 0.0);
+  Simulation s3(3, 1);
+  EXPECT_THROW(s3.add_pair("contact/node-edge", P({{"stiffness", 1.0}})), InputError);
+  EXPECT_THROW(sim.add_pair("contact/node-edge",
+                            P({{"stiffness", 1.0}, {"mu_static", 0.1}, {"mu_dynamic", 0.2}})),
+               InputError);
+}

@@ -49,6 +49,22 @@ Chain& Simulation::add_chain(const std::string& name, const std::vector<Vec3>& p
   return topo_.chains.back();
 }
 
+int Simulation::grow_chain(const std::string& name, bool at_front, const Vec3& pos, double mass,
+                           double rest) {
+  Chain* c = topo_.find(name);
+  if (!c) throw InputError("unknown chain '" + name + "'");
+  Vec3 q = pos;
+  if (dim_ == 2) q.z() = 0.0;
+  const int n = static_cast<int>(nodes_.add(q, mass));
+  if (at_front)
+    c->grow_front(n, rest);
+  else
+    c->grow_back(n, rest);
+  groups_[name] = c->nodes;
+  schedule_dirty_ = true;
+  return n;
+}
+
 RegionStyle& Simulation::add_region(const std::string& id, const std::string& style,
                                     const RawParams& p) {
   if (regions_.count(id)) throw InputError("a region named '" + id + "' already exists");
@@ -193,9 +209,11 @@ void Simulation::build_schedule() {
   fix_post_force_.clear();
   fix_end_of_step_.clear();
   for (auto& f : fixes_) {
-    if (f->stages() & kPostForce) fix_post_force_.push_back(f.get());
+    if ((f->stages() & kPostForce) && !(f->stages() & kMeasure)) fix_post_force_.push_back(f.get());
     if (f->stages() & kEndOfStep) fix_end_of_step_.push_back(f.get());
   }
+  for (auto& f : fixes_)
+    if (f->stages() & kMeasure) fix_post_force_.push_back(f.get());
   for (auto& b : bonds_) b->setup(*this);
   for (auto& p : pairs_) p->setup(*this);
   for (auto& f : fixes_)
@@ -318,11 +336,6 @@ void Simulation::setup_run() {
   if (nodes_.size() == 0) throw InputError("the scene has no nodes");
   resolve_dt();
   build_schedule();
-  if (dof_mask_) {
-    for (size_t i = 0; i < dof_mask_->size(); ++i)
-      for (int c = 0; c < 3; ++c)
-        if ((*dof_mask_)[i] & (1 << c)) nodes_.v[i][c] = 0.0;
-  }
   if (!forces_valid) compute_forces();
   integrator_->setup(*this);
   if (verbose) {
@@ -499,6 +512,8 @@ void Simulation::after_step(long k, bool last) {
 
 void Simulation::run(const RunOptions& opt) {
   if (opt.steps < 0) throw InputError("run: steps must be >= 0");
+  stop_reason_.clear();
+  last_stop_.clear();
   setup_run();
   for (auto& d : dumps_)
     if (d->every() > 0 && step % d->every() == 0) d->write(*this);
@@ -511,7 +526,12 @@ void Simulation::run(const RunOptions& opt) {
     integrator_->step(*this);
     ++step;
     time += dt;
-    after_step(k, k == opt.steps);
+    after_step(k, k == opt.steps || !stop_reason_.empty());
+    if (!stop_reason_.empty()) {
+      if (verbose) std::printf("run stopped at step %ld: %s\n", step, stop_reason_.c_str());
+      if (thermo.every > 0 && step % thermo.every != 0) write_thermo(false);
+      break;
+    }
     if (opt.callback && opt.every > 0 && k % opt.every == 0) {
       if (opt.callback(*this)) break;
     }
@@ -530,6 +550,8 @@ void Simulation::run(const RunOptions& opt) {
       }
     }
   }
+  last_stop_ = stop_reason_;
+  stop_reason_.clear();
   for (auto& d : dumps_) d->flush();
 }
 

@@ -63,6 +63,10 @@ class Simulation {
   // --- building the scene
   Chain& add_chain(const std::string& name, const std::vector<Vec3>& pos, double mass_per_node,
                    bool closed);
+  // Adds a node at one end of a chain (injection): every property grows, the chain's
+  // group follows, and styles re-bind before the next force evaluation.
+  int grow_chain(const std::string& chain, bool at_front, const Vec3& pos, double mass,
+                 double rest);
   RegionStyle& add_region(const std::string& id, const std::string& style, const RawParams& p);
   RegionStyle& region(const std::string& id);
   void set_group(const std::string& name, std::vector<int> nodes);
@@ -91,6 +95,10 @@ class Simulation {
   // Zeroes forces, adds bonds, pairs and fixes; records energies by category.
   void compute_forces();
   void end_of_step();
+  // A style asks the run to end cleanly after the current step (e.g. jamming);
+  // run() reports the reason and clears the request.
+  void request_stop(const std::string& why) { stop_reason_ = why; }
+  const std::string& stop_reason() const { return last_stop_; }
   // Free degrees of freedom: masked components (clamps) keep zero force.
   const Property<int>* dof_mask() const { return dof_mask_; }
   void set_dof_mask(Property<int>* m) { dof_mask_ = m; }
@@ -151,6 +159,7 @@ class Simulation {
   std::vector<FixStyle*> fix_post_force_, fix_end_of_step_;
   Property<int>* dof_mask_ = nullptr;
   bool schedule_dirty_ = true;
+  std::string stop_reason_, last_stop_;
   std::map<std::string, double> energy_;
   std::ofstream thermo_csv_;
   bool thermo_header_written_ = false;

@@ -67,6 +67,7 @@ enum FixStage : unsigned {
   kSetup = 1u << 0,
   kPostForce = 1u << 1,
   kEndOfStep = 1u << 2,
+  kMeasure = 1u << 3,  // post_force after every other fix: sees the complete forces
 };
 
 class FixStyle : public Style {

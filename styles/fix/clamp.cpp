@@ -32,7 +32,11 @@ class ClampFix : public FixStyle {
     }
     auto nodes = sim.group(p.str("group"));
     auto& mask = sim.nodes().require<int>("dof_mask", 0);
-    auto add = [&](int i) { mask[i] |= bits; };
+    bits_ = bits;
+    auto add = [&](int i) {
+      mask[i] |= bits;
+      clamped_.push_back(i);
+    };
     for (int i : nodes) add(i);
     if (p.boolean("rotation")) {
       for (auto& c : sim.topology().chains) {
@@ -45,7 +49,15 @@ class ClampFix : public FixStyle {
     }
     count_ = static_cast<int>(nodes.size());
   }
-  unsigned stages() const override { return 0; }
+  // Clamped components start and stay at rest (kinematically driven nodes of other
+  // fixes share the mask but keep their prescribed velocity).
+  unsigned stages() const override { return kSetup; }
+  void setup(Simulation& sim) override {
+    auto& mask = *sim.nodes().find<int>("dof_mask");
+    for (int i : clamped_)
+      for (int c = 0; c < 3; ++c)
+        if (mask[i] & (1 << c) & bits_) sim.nodes().v[i][c] = 0.0;
+  }
   std::vector<std::string> value_keys() const override { return {"count"}; }
   double value(const std::string& key) const override {
     if (key == "count") return count_;
@@ -53,7 +65,8 @@ class ClampFix : public FixStyle {
   }
 
  private:
-  int count_ = 0;
+  int count_ = 0, bits_ = 0;
+  std::vector<int> clamped_;
 };
 
 }  // namespace slender

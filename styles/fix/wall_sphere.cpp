@@ -26,6 +26,12 @@ class SphereWallFix : public FixStyle {
         .def(std::string("inside"))
         .choices({"inside", "outside"});
     s.string("group", "node group").def(std::string("all"));
+    s.vector("openings",
+             "polar angles (radians, in the xy plane) of holes in the wall, e.g. "
+             "{0, math.pi} for two opposite injection channels")
+        .def(std::vector<double>{});
+    s.real("opening_width", "width of each hole along the wall (default: the diameter)")
+        .nonnegative();
     return s;
   }
   SphereWallFix(Simulation& sim, const ParamValues& p)
@@ -35,7 +41,10 @@ class SphereWallFix : public FixStyle {
         law_(ContactLaw::from(
             p, p.real("diameter") > 0 ? p.real("diameter") : 0.01 * p.real("radius"))),
         inside_(p.str("side") == "inside"),
-        group_(p.str("group")) {
+        group_(p.str("group")),
+        openings_(p.vec("openings")),
+        half_gap_(0.5 * (p.has("opening_width") ? p.real("opening_width") : p.real("diameter")) /
+                  p.real("radius")) {
     sim.group(group_);
     if (sim.dimension() == 2) c_.z() = 0.0;
   }
@@ -70,7 +79,7 @@ class SphereWallFix : public FixStyle {
         st.stick = (*state_)[i] & 1;
         st.active = (*state_)[i] & 2;
       }
-      if (delta <= 0.0 || dist == 0.0) {
+      if (delta <= 0.0 || dist == 0.0 || in_opening(rel)) {
         if (law_.frictional()) (*state_)[i] = 0, (*xi_)[i].setZero();
         continue;
       }
@@ -105,11 +114,24 @@ class SphereWallFix : public FixStyle {
   }
 
  private:
+  // Holes in the wall, e.g. where injection channels enter the cavity.
+  bool in_opening(const Vec3& rel) const {
+    if (openings_.empty()) return false;
+    const double a = std::atan2(rel.y(), rel.x());
+    for (double o : openings_) {
+      const double diff = std::remainder(a - o, 2 * M_PI);
+      if (std::abs(diff) <= half_gap_) return true;
+    }
+    return false;
+  }
+
   Vec3 c_;
   double r_, d_;
   ContactLaw law_;
   bool inside_;
   std::string group_;
+  std::vector<double> openings_;
+  double half_gap_;  // half the opening width, as an angle
   std::vector<int> nodes_;
   Property<Vec3>* xi_ = nullptr;
   Property<int>* state_ = nullptr;

@@ -1,0 +1,227 @@
+// Wire injection into a circular cavity through straight channels along the x
+// axis (MODELS.md §2.4). Nodes in a channel (|x - c_x| >= r) are kinematic: their
+// degrees of freedom are clamped and they move inward at the feed speed. When the
+// outermost channel node has moved one rest length, a new node enters behind it;
+// a node that passes the cavity's rim becomes free. The injection force is the
+// axial force the feeder must exert on the channel nodes (minus the inward part of
+// the internal forces on them), summed over the channels. Jamming: its moving
+// average over `jam_window` steps exceeds `jam_force`, or it grows by `jam_growth`
+// within a packing-density increase of `jam_dphi`; the run then ends cleanly.
+#include <cmath>
+#include <deque>
+#include <limits>
+
+#include "registry.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+class WireInjectionFix : public FixStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("fix", name,
+                "push a wire into a circular cavity through one or two channels along x; "
+                "injection force, packing density, jamming stop (MODELS.md §2.4)");
+    s.string("chain", "the injected wire: straight along x, its ends in the channels").required();
+    s.real("radius", "cavity radius r").required().positive();
+    s.vector("center", "cavity centre").def(std::vector<double>{0, 0}).length(2, 3);
+    s.string("channels", "opposite: both ends are pushed; left / right: one end")
+        .def(std::string("opposite"))
+        .choices({"opposite", "left", "right"});
+    s.real("speed", "feed speed v_in (length per time unit) of each channel").required().positive();
+    s.real("diameter", "wire diameter d, for the packing density d L / (pi r^2)")
+        .def(1.0)
+        .positive();
+    s.real("jam_force", "stop when the moving average of the injection force exceeds this")
+        .def(std::numeric_limits<double>::infinity())
+        .positive();
+    s.integer("jam_window", "steps of the moving average").def(1000.0).min(1);
+    s.real("jam_growth", "also stop when the averaged force grows by this factor ... (0: off)")
+        .def(0.0)
+        .nonnegative();
+    s.real("jam_dphi", "... within this increase of the packing density").def(0.005).positive();
+    s.real("max_phi", "stop at this packing density").def(1.0).positive();
+    return s;
+  }
+
+  WireInjectionFix(Simulation& sim, const ParamValues& p)
+      : chain_(p.str("chain")),
+        r_(p.real("radius")),
+        c_(p.vec3("center")),
+        v_(p.real("speed")),
+        d_(p.real("diameter")),
+        jam_force_(p.real("jam_force")),
+        window_(p.integer("jam_window")),
+        growth_(p.real("jam_growth")),
+        dphi_(p.real("jam_dphi")),
+        max_phi_(p.real("max_phi")) {
+    if (sim.dimension() != 2) throw InputError("fix style 'inject/wire' needs a 2D simulation");
+    Chain* c = sim.topology().find(chain_);
+    if (!c) throw InputError("fix style 'inject/wire': unknown chain '" + chain_ + "'");
+    if (c->closed) throw InputError("fix style 'inject/wire': the chain must be open");
+    auto& x = sim.nodes().x;
+    const double x_first = x[c->nodes.front()].x() - c_.x(),
+                 x_last = x[c->nodes.back()].x() - c_.x();
+    const std::string ch = p.str("channels");
+    // each pushed end must start in its channel, outside the cavity
+    auto end_for = [&](bool left) -> int {
+      // the end lying on this side: front or back of the chain
+      const bool front_is_left = x_first < x_last;
+      return left == front_is_left ? 0 : 1;
+    };
+    if (ch == "opposite" || ch == "left") channels_.push_back(Channel{end_for(true) == 0, +1.0});
+    if (ch == "opposite" || ch == "right") channels_.push_back(Channel{end_for(false) == 0, -1.0});
+    for (auto& k : channels_) {
+      const int node = k.front ? c->nodes.front() : c->nodes.back();
+      if (std::abs(x[node].x() - c_.x()) < r_)
+        throw InputError("fix style 'inject/wire': the chain's end node " +
+                         std::to_string(node + 1) +
+                         " must start in its channel, outside the cavity (|x - c| >= r)");
+      k.anchor = x[node].x();
+      k.rest = k.front ? c->rest_length.front() : c->rest_length.back();
+      k.mass = sim.nodes().mass[node];
+    }
+    mask_ = &sim.nodes().require<int>("dof_mask", 0);
+    // kinematic channel nodes: clamped degrees of freedom, constant inward velocity
+    for (int i : c->nodes)
+      if (in_channel(x[i])) drive(sim, i);
+  }
+  // measured after every other force fix, before the clamp zeroes the channel forces
+  unsigned stages() const override { return kSetup | kPostForce | kMeasure | kEndOfStep; }
+  void setup(Simulation& sim) override { mask_ = sim.nodes().find<int>("dof_mask"); }
+
+  double post_force(Simulation& sim) override {
+    // the feeder balances the inward component of the internal forces
+    auto& f = sim.nodes().f;
+    Chain* c = sim.topology().find(chain_);
+    double total = 0.0;
+    for (int i : c->nodes)
+      if ((*mask_)[i] == 7 && in_channel(sim.nodes().x[i]))
+        total -= f[i].x() * inward(sim.nodes().x[i]);
+    force_ = total;
+    return 0.0;
+  }
+
+  void end_of_step(Simulation& sim) override {
+    auto& x = sim.nodes().x;
+    Chain* c = sim.topology().find(chain_);
+    // nodes that crossed the rim are free from now on
+    for (int i : c->nodes)
+      if ((*mask_)[i] == 7 && !in_channel(x[i])) (*mask_)[i] = 0;
+    // feed: a new node enters behind the outermost one
+    for (auto& k : channels_) {
+      const int outer = k.front ? c->nodes.front() : c->nodes.back();
+      if (std::abs(x[outer].x() - k.anchor) >= k.rest) {
+        const Vec3 pos(x[outer].x() - k.dir * k.rest, c_.y(), 0.0);
+        const int n = sim.grow_chain(chain_, k.front, pos, k.mass, k.rest);
+        mask_ = sim.nodes().find<int>("dof_mask");
+        drive(sim, n);
+        injected_ += k.rest;
+        c = sim.topology().find(chain_);
+      }
+    }
+    phi_ = packing(sim);
+    // moving average of the injection force and the jamming tests
+    history_.push_back(force_);
+    sum_ += force_;
+    if (static_cast<long>(history_.size()) > window_) {
+      sum_ -= history_.front();
+      history_.pop_front();
+    }
+    avg_ = sum_ / static_cast<double>(history_.size());
+    if (static_cast<long>(history_.size()) < window_) return;
+    if (avg_ > jam_force_) {
+      jammed_ = 1;
+      sim.request_stop("jammed: injection force " + std::to_string(avg_) +
+                       " > jam_force at phi = " + std::to_string(phi_));
+    } else if (growth_ > 0) {
+      marks_.push_back({phi_, avg_});
+      while (!marks_.empty() && phi_ - marks_.front().first > dphi_) marks_.pop_front();
+      if (marks_.front().second > 0 && avg_ > growth_ * marks_.front().second) {
+        jammed_ = 1;
+        sim.request_stop(
+            "jammed: injection force grew " + std::to_string(avg_ / marks_.front().second) +
+            "-fold within dphi = " + std::to_string(dphi_) + " at phi = " + std::to_string(phi_));
+      }
+    }
+    if (phi_ >= max_phi_)
+      sim.request_stop("packing density reached max_phi = " + std::to_string(max_phi_));
+  }
+
+  std::vector<std::string> value_keys() const override {
+    return {"force", "force_avg", "phi", "jammed", "injected", "nodes_inside"};
+  }
+  double value(const std::string& key) const override {
+    if (key == "force") return force_;
+    if (key == "force_avg") return avg_;
+    if (key == "phi") return phi_;
+    if (key == "jammed") return jammed_;
+    if (key == "injected") return injected_;
+    if (key == "nodes_inside") return inside_;
+    return FixStyle::value(key);
+  }
+  void save_state(StateMap& st) const override {
+    std::vector<double> ch;
+    for (auto& k : channels_) ch.push_back(k.anchor);
+    st["channels"] = ch;
+    st["scalars"] = {force_, avg_, phi_, static_cast<double>(jammed_), injected_, sum_};
+    st["history"] = std::vector<double>(history_.begin(), history_.end());
+  }
+  void load_state(const StateMap& st) override {
+    auto& ch = st.at("channels");
+    for (size_t i = 0; i < channels_.size() && i < ch.size(); ++i) channels_[i].anchor = ch[i];
+    auto& s = st.at("scalars");
+    force_ = s[0];
+    avg_ = s[1];
+    phi_ = s[2];
+    jammed_ = static_cast<int>(s[3]);
+    injected_ = s[4];
+    sum_ = s[5];
+    auto& h = st.at("history");
+    history_.assign(h.begin(), h.end());
+  }
+
+ private:
+  struct Channel {
+    bool front;  // the pushed end is the chain's first node (else its last)
+    double dir;  // inward direction along x: +1 from the left, -1 from the right
+    double anchor = 0, rest = 1, mass = 1;
+  };
+  bool in_channel(const Vec3& x) const { return std::abs(x.x() - c_.x()) >= r_; }
+  double inward(const Vec3& x) const { return x.x() < c_.x() ? 1.0 : -1.0; }
+  void drive(Simulation& sim, int i) {
+    (*mask_)[i] = 7;
+    sim.nodes().v[i] = Vec3(v_ * inward(sim.nodes().x[i]), 0, 0);
+    sim.nodes().x[i].y() = c_.y();
+  }
+  double packing(Simulation& sim) {
+    Chain* c = sim.topology().find(chain_);
+    auto& x = sim.nodes().x;
+    double length = 0.0;
+    inside_ = 0;
+    for (int e = 0; e < c->n_edges(); ++e) {
+      const Vec3 mid = 0.5 * (x[c->edge_tail(e)] + x[c->edge_head(e)]) - c_;
+      if (mid.head<2>().norm() < r_) length += c->rest_length[e];
+    }
+    for (int i : c->nodes)
+      if ((x[i] - c_).head<2>().norm() < r_) ++inside_;
+    return d_ * length / (M_PI * r_ * r_);
+  }
+
+  std::string chain_;
+  double r_;
+  Vec3 c_;
+  double v_, d_, jam_force_;
+  long window_;
+  double growth_, dphi_, max_phi_;
+  std::vector<Channel> channels_;
+  Property<int>* mask_ = nullptr;
+  double force_ = 0, avg_ = 0, phi_ = 0, injected_ = 0, sum_ = 0;
+  int jammed_ = 0, inside_ = 0;
+  std::deque<double> history_;
+  std::deque<std::pair<double, double>> marks_;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::FixStyle, "inject/wire", slender::WireInjectionFix)

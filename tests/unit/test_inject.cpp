@@ -1,0 +1,97 @@
+// Unit tests of inject/wire and of wall openings.
+#include <cmath>
+
+#include "helpers.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+namespace {
+
+std::unique_ptr<Simulation> feed_scene(const std::string& channels, double gamma, double v) {
+  auto sim = std::make_unique<Simulation>(2, 1);
+  sim->verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 25; ++i) pts.emplace_back(-12.0 + i, 0, 0);  // r = 10: 3 nodes per channel
+  sim->add_chain("wire", pts, 1.0, false);
+  sim->add_bond("spring", P({{"k", 1000.0}}));
+  sim->add_bond("bend2d", P({{"k", 60.0}}));
+  sim->add_fix("drag", "damping/viscous", P({{"gamma", gamma}}));
+  sim->add_fix(
+      "feed", "inject/wire",
+      P({{"chain", std::string("wire")}, {"radius", 10.0}, {"speed", v}, {"channels", channels}}));
+  sim->set_integrator("gear", P({{"dt", 0.002}}));
+  return sim;
+}
+
+}  // namespace
+
+TEST(WireInjectionFix, FeedsTheRightLengthAndGrowsTheChain) {
+  // one channel: the straight wire slides through the cavity (two channels would
+  // compress a perfectly straight wire until the guard stops it)
+  const double v = 0.1;
+  auto sim = feed_scene("left", 0.0, v);
+  const size_t n0 = sim->nodes().size();
+  sim->run(RunOptions{50000, 0, {}});  // t = 100: the channel feeds 10
+  const double fed = sim->fix("feed").value("injected");
+  EXPECT_NEAR(fed, v * 100.0, 1.0 + 1e-9);  // within one rest length
+  EXPECT_EQ(sim->nodes().size() - n0, static_cast<size_t>(std::lround(fed)));
+  EXPECT_EQ(sim->topology().chains[0].n_edges(), static_cast<int>(sim->nodes().size()) - 1);
+  // every node is in the chain's group and every new node has the chain's mass
+  EXPECT_EQ(sim->group("wire").size(), sim->nodes().size());
+  for (double m : sim->nodes().mass) EXPECT_EQ(m, 1.0);
+  // the rest lengths of the fed edges are the wire's
+  for (double l : sim->topology().chains[0].rest_length) EXPECT_EQ(l, 1.0);
+}
+
+TEST(WireInjectionFix, InjectionForceBalancesTheDragOfTheWire) {
+  // one channel, no obstacle: the whole wire (channel nodes included) slides at v
+  // against the drag, so the feeder pushes with gamma v per node
+  const double gamma = 0.5, v = 0.05;
+  auto sim = feed_scene("left", gamma, v);
+  sim->run(RunOptions{40000, 0, {}});  // t = 80, steady sliding
+  const double expected = gamma * v * static_cast<double>(sim->nodes().size());
+  EXPECT_NEAR(sim->fix("feed").value("force"), expected, 0.04 * expected);
+  // packing density d L / (pi r^2) of the wire inside the cavity
+  EXPECT_NEAR(sim->fix("feed").value("phi"), 20.0 / (M_PI * 100.0), 1.5 / (M_PI * 100.0));
+}
+
+TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
+  auto sim = std::make_unique<Simulation>(2, 1);
+  sim->verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 25; ++i) pts.emplace_back(-12.0 + i, 0, 0);
+  sim->add_chain("wire", pts, 1.0, false);
+  sim->add_bond("spring", P({{"k", 1000.0}}));
+  sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
+  // the far end is held: pushing a clamped straight wire loads it until the stop
+  sim->set_group("far", {24});
+  sim->add_fix("hold", "clamp", P({{"group", std::string("far")}}));
+  sim->add_fix("feed", "inject/wire",
+               P({{"chain", std::string("wire")},
+                  {"radius", 10.0},
+                  {"speed", 0.01},
+                  {"channels", std::string("left")},
+                  {"jam_force", 50.0},
+                  {"jam_window", 100.0}}));
+  sim->set_integrator("gear", P({{"dt", 0.002}}));
+  sim->run(RunOptions{10000000, 0, {}});
+  EXPECT_LT(sim->step, 10000000);
+  EXPECT_EQ(sim->fix("feed").value("jammed"), 1.0);
+  EXPECT_GT(sim->fix("feed").value("force_avg"), 50.0);
+  EXPECT_NE(sim->stop_reason().find("jammed"), std::string::npos) << sim->stop_reason();
+}
+
+TEST(SphereWallFix, OpeningsLetTheWirePass) {
+  Simulation sim(2, 1);
+  // nodes across the rim at angle 0 (in the opening) and at angle pi/2 (not)
+  sim.add_chain("w", {Vec3(10.2, 0, 0), Vec3(0, 10.2, 0)}, 1.0, false);
+  sim.add_fix("cavity", "wall/circle",
+              P({{"radius", 10.0},
+                 {"diameter", 1.0},
+                 {"stiffness", 100.0},
+                 {"openings", std::vector<double>{0.0, M_PI}}}));
+  sim.compute_forces();
+  EXPECT_EQ(sim.nodes().f[0].norm(), 0.0);
+  EXPECT_GT(sim.nodes().f[1].norm(), 0.0);
+}

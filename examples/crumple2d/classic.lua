@@ -31,7 +31,7 @@ sim:pair("contact/node-edge", { diameter = d, stiffness = kc, damping = 0.1 * 2 
   mu_static = mu, mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s, skin = d })
 sim:fix("cavity", "wall/circle", { radius = r, diameter = d, stiffness = kc,
   damping = 0.1 * 2 * math.sqrt(m * kc * d), mu_static = mu, mu_dynamic = 0.9 * mu,
-  stick_stiffness = k1 / d, slip_velocity = 1e-3 * s, openings = { 0, math.pi } })
+  stick_stiffness = k1 / d, slip_velocity = 1e-3 * s })  -- channel nodes are kinematic: no wall
 sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(k1 * m) })
 sim:fix("feed", "inject/wire", { chain = "wire", radius = r, speed = s, diameter = d,
   jam_force = 0.1 * k1 * d, jam_window = 1000, max_phi = max_phi })

@@ -1,5 +1,5 @@
 // Wire injection into a circular cavity through straight channels along the x
-// axis (MODELS.md §2.4). Nodes in a channel (|x - c_x| >= r) are kinematic: their
+// axis (MODELS.md §2.4). Nodes in a channel (|x - c_x| >= r - d/2) are kinematic: their
 // degrees of freedom are clamped and they move inward at the feed speed. When the
 // outermost channel node has moved one rest length, a new node enters behind it;
 // a node that passes the cavity's rim becomes free. The injection force is the
@@ -93,11 +93,8 @@ class WireInjectionFix : public FixStyle {
   double post_force(Simulation& sim) override {
     // the feeder balances the inward component of the internal forces
     auto& f = sim.nodes().f;
-    Chain* c = sim.topology().find(chain_);
     double total = 0.0;
-    for (int i : c->nodes)
-      if ((*mask_)[i] == 7 && in_channel(sim.nodes().x[i]))
-        total -= f[i].x() * inward(sim.nodes().x[i]);
+    for (int i : driven_) total -= f[i].x() * inward(sim.nodes().x[i]);
     force_ = total;
     return 0.0;
   }
@@ -105,9 +102,17 @@ class WireInjectionFix : public FixStyle {
   void end_of_step(Simulation& sim) override {
     auto& x = sim.nodes().x;
     Chain* c = sim.topology().find(chain_);
-    // nodes that crossed the rim are free from now on
-    for (int i : c->nodes)
-      if ((*mask_)[i] == 7 && !in_channel(x[i])) (*mask_)[i] = 0;
+    // the nodes this fix drives are free once they are clear of the rim
+    for (size_t k = 0; k < driven_.size();) {
+      const int i = driven_[k];
+      if (!in_channel(x[i])) {
+        (*mask_)[i] = 0;
+        driven_[k] = driven_.back();
+        driven_.pop_back();
+      } else {
+        ++k;
+      }
+    }
     // feed: a new node enters behind the outermost one
     for (auto& k : channels_) {
       const int outer = k.front ? c->nodes.front() : c->nodes.back();
@@ -166,6 +171,7 @@ class WireInjectionFix : public FixStyle {
     st["channels"] = ch;
     st["scalars"] = {force_, avg_, phi_, static_cast<double>(jammed_), injected_, sum_};
     st["history"] = std::vector<double>(history_.begin(), history_.end());
+    st["driven"] = std::vector<double>(driven_.begin(), driven_.end());
   }
   void load_state(const StateMap& st) override {
     auto& ch = st.at("channels");
@@ -179,6 +185,8 @@ class WireInjectionFix : public FixStyle {
     sum_ = s[5];
     auto& h = st.at("history");
     history_.assign(h.begin(), h.end());
+    auto& dr = st.at("driven");
+    driven_.assign(dr.begin(), dr.end());
   }
 
  private:
@@ -187,10 +195,19 @@ class WireInjectionFix : public FixStyle {
     double dir;  // inward direction along x: +1 from the left, -1 from the right
     double anchor = 0, rest = 1, mass = 1;
   };
-  bool in_channel(const Vec3& x) const { return std::abs(x.x() - c_.x()) >= r_; }
+  // A channel node is released once it is clear of the wall, |x - c_x| < r - d/2,
+  // so a new free node never starts overlapping the cavity wall.
+  // Only sides with a channel count: with channels = "left" the wire's other end is free.
+  bool in_channel(const Vec3& x) const {
+    if (std::abs(x.x() - c_.x()) < r_ - 0.5 * d_) return false;
+    for (auto& k : channels_)
+      if (k.dir == inward(x)) return true;
+    return false;
+  }
   double inward(const Vec3& x) const { return x.x() < c_.x() ? 1.0 : -1.0; }
   void drive(Simulation& sim, int i) {
     (*mask_)[i] = 7;
+    driven_.push_back(i);
     sim.nodes().v[i] = Vec3(v_ * inward(sim.nodes().x[i]), 0, 0);
     sim.nodes().x[i].y() = c_.y();
   }
@@ -215,6 +232,7 @@ class WireInjectionFix : public FixStyle {
   long window_;
   double growth_, dphi_, max_phi_;
   std::vector<Channel> channels_;
+  std::vector<int> driven_;  // nodes this fix moves kinematically
   Property<int>* mask_ = nullptr;
   double force_ = 0, avg_ = 0, phi_ = 0, injected_ = 0, sum_ = 0;
   int jammed_ = 0, inside_ = 0;

@@ -69,7 +69,11 @@ class SphereWallFix : public FixStyle {
     double e = 0.0;
     total_ = 0.0;
     contacts_ = 0;
+    const Property<int>* mask = sim.dof_mask();
     for (int i : nodes_) {
+      // fully kinematic nodes (clamped, or driven in an injection channel) feel
+      // no wall: their forces are discarded and must not enter any measurement
+      if (mask && (*mask)[i] == 7) continue;
       const Vec3 rel = x[i] - c_;
       const double dist = rel.norm();
       const double delta = inside_ ? dist + 0.5 * d_ - r_ : r_ + 0.5 * d_ - dist;

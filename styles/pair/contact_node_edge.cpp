@@ -89,16 +89,29 @@ class NodeEdgeContactPair : public PairStyle {
       if (t == 0.0 && (ed.index > 0 || chains_[static_cast<size_t>(ed.chain)]->closed)) continue;
       const Vec3 p = x[ed.a] + t * seg;
       const Vec3 r = x[c.node] - p;
-      const double dist = r.norm();
-      if (dist >= d_ || dist == 0.0) {
+      double dist = r.norm();
+      // which side of the edge the node is on; a contact remembers the side it was
+      // made from, so an overloaded node pushed past the centre line is pushed back
+      // (overlap d + distance) instead of being pulled through the wire
+      const double cross = seg.x() * r.y() - seg.y() * r.x();
+      const int side = cross > 0 ? 1 : -1;
+      const bool crossed = c.prev && c.side != 0 && side != c.side && dist < d_;
+      if ((dist >= d_ && !crossed) || dist == 0.0) {
         c.st.stick = false;
         c.st.xi.setZero();
+        c.side = 0;
         continue;
       }
-      const Vec3 nrm = r / dist;
+      Vec3 nrm = r / dist;
+      if (crossed) {
+        nrm = -nrm;
+        dist = -dist;
+      } else if (!c.prev) {
+        c.side = side;
+      }
       const Vec3 vrel = v[c.node] - ((1 - t) * v[ed.a] + t * v[ed.b]);
       c.st.active = c.prev;
-      if (!c.prev && law_.frictional()) hand_over(k);
+      if (!c.prev) hand_over(k);
       const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, c.st);
       f[c.node] += F;
       f[ed.a] -= (1 - t) * F;
@@ -130,20 +143,21 @@ class NodeEdgeContactPair : public PairStyle {
     std::vector<double> flat;
     for (auto& e : list_)
       flat.insert(flat.end(), {double(e.node), double(e.edge), e.st.xi.x(), e.st.xi.y(),
-                               e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0});
+                               e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0, double(e.side)});
     st["history"] = flat;
     st["counters"] = {builds_, static_cast<double>(last_build_step_)};
   }
   void load_state(const StateMap& st) override {
     list_.clear();
     auto& h = st.at("history");
-    for (size_t k = 0; k + 6 <= h.size(); k += 6) {
+    for (size_t k = 0; k + 7 <= h.size(); k += 7) {
       Entry e;
       e.node = static_cast<int>(h[k]);
       e.edge = static_cast<int>(h[k + 1]);
       e.st.xi = Vec3(h[k + 2], h[k + 3], 0);
       e.st.stick = h[k + 4] != 0;
       e.st.active = h[k + 5] != 0;
+      e.side = static_cast<int>(h[k + 6]);
       list_.push_back(e);
     }
     builds_ = st.at("counters")[0];
@@ -158,6 +172,7 @@ class NodeEdgeContactPair : public PairStyle {
     int node = 0, edge = 0;
     FrictionState st;
     bool prev = false;
+    int side = 0;  // +1 / -1: side of the edge the contact was made from; 0: none
   };
 
   bool topology_changed(const Simulation&) const {
@@ -259,7 +274,10 @@ class NodeEdgeContactPair : public PairStyle {
       while (j < old_.size() &&
              (old_[j].node < e.node || (old_[j].node == e.node && old_[j].edge < e.edge)))
         ++j;
-      if (j < old_.size() && old_[j].node == e.node && old_[j].edge == e.edge) e.st = old_[j].st;
+      if (j < old_.size() && old_[j].node == e.node && old_[j].edge == e.edge) {
+        e.st = old_[j].st;
+        e.side = old_[j].side;
+      }
     }
     x_build_ = x;
     last_build_step_ = sim.step;
@@ -282,6 +300,7 @@ class NodeEdgeContactPair : public PairStyle {
     c.st.xi = other.st.xi;
     c.st.stick = other.st.stick;
     c.st.active = true;
+    if (other.side != 0) c.side = other.side;
   }
 
   double d_;

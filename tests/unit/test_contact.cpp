@@ -61,7 +61,7 @@ TEST(NodeEdgeContactPair, ConservesMomentumWithFrictionAndDamping) {
 }
 
 TEST(NodeEdgeContactPair, CrossingWiresDoNotPassThrough) {
-  for (double speed : {0.05, 0.2, 0.5}) {
+  for (double speed : {0.05, 0.2, 0.5, 3.0}) {
     Simulation sim(2, 1);
     sim.verbose = false;
     std::vector<Vec3> floor, stick;
@@ -84,6 +84,30 @@ TEST(NodeEdgeContactPair, CrossingWiresDoNotPassThrough) {
     // the lowest node stops at about one diameter above the floor's edge
     EXPECT_GT(ymin, 0.5) << "speed " << speed;
     EXPECT_LT(ymin, 1.0) << "speed " << speed;
+  }
+}
+
+TEST(NodeEdgeContactPair, OverloadedContactHoldsInsteadOfTunnelling) {
+  // a load beyond k_c d^2 pushes the nodes past the edge's centre line; the contact
+  // remembers the side it was made from and keeps pushing back, so the block is
+  // held within a diameter of the floor instead of tunnelling through it
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.add_chain("floor", {Vec3(-50, 0, 0), Vec3(50, 0, 0)}, 1.0, false);
+  sim.add_chain("block", {Vec3(-0.5, 0.95, 0), Vec3(0.5, 0.95, 0)}, 1.0, false);
+  sim.add_fix("hold", "clamp", P({{"group", std::string("floor")}}));
+  sim.add_bond("spring", P({{"k", 100.0}, {"chains", std::vector<std::string>{"block"}}}));
+  sim.add_pair("contact/node-edge", P({{"stiffness", 100.0}, {"damping", 20.0}}));
+  sim.add_fix("press", "force/constant",
+              P({{"group", std::string("block")}, {"force", std::vector<double>{0, -150.0}}}));
+  sim.guard.max_step_fraction = 1e300;
+  sim.guard.ke_factor = 1e300;
+  sim.set_integrator("verlet", P({{"dt", 0.005}}));
+  sim.run(RunOptions{4000, 0, {}});
+  for (int i : sim.group("block")) {
+    EXPECT_GT(sim.nodes().x[i].y(), -1.0);
+    // held where k_c (d + |y|)^2 = F: |y| = sqrt(1.5) - 1
+    EXPECT_NEAR(sim.nodes().x[i].y(), -(std::sqrt(1.5) - 1.0), 0.02);
   }
 }
 

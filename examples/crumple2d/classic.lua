@@ -35,7 +35,10 @@ sim:fix("cavity", "wall/circle", { radius = r, diameter = d, stiffness = kc,
 sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(k1 * m) })
 sim:fix("feed", "inject/wire", { chain = "wire", radius = r, speed = s, diameter = d,
   jam_force = 0.1 * k1 * d, jam_window = 1000, max_phi = max_phi })
-sim:integrator("gear", { values = 5, dt = "auto", safety = 0.5 })
+-- dt = 0.02 sqrt(m / k1) (MODELS.md §2.5 [C]): 2.8x below the nominal "auto" step,
+-- which assumes one contact of overlap d/10 per node; dense packings load a node
+-- with several deeper contacts and Gear q = 5 is stable only for omega dt < 0.42
+sim:integrator("gear", { values = 5, dt = slender.var("dt", 0.02 * math.sqrt(m / k1)) })
 sim:compute("count", "count", {})
 sim:thermo { every = 20000, file = "classic_thermo.csv",
   columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/node-edge.contacts",
@@ -49,5 +52,10 @@ sim:run { steps = slender.var("max_steps", 1e9) }
 local wall = slender.clock() - t0
 slender.result { case = "crumple2d/classic", f = f, seed = seed, phi = sim:value("feed.phi"),
   jammed = sim:value("feed.jammed"), steps = sim:step(), wall_s = wall, nodes = sim:nnodes(),
+  ke_per_node = sim:value("ke") / sim:nnodes(), force = sim:value("feed.force_avg"),
   contacts = sim:value("contact/node-edge.contacts"),
   node_steps_per_s = sim:nnodes() * sim:step() / math.max(wall, 1e-9) }
+-- tests: -v check=true asserts that the run ended quasi-statically (a jam, not a burst)
+if slender.var("check", false) then
+  assert(sim:value("ke") / sim:nnodes() < 0.1, "the run ended with kinetic energy " .. sim:value("ke"))
+end

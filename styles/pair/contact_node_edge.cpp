@@ -93,9 +93,12 @@ class NodeEdgeContactPair : public PairStyle {
       // which side of the edge the node is on; a contact remembers the side it was
       // made from, so an overloaded node pushed past the centre line is pushed back
       // (overlap d + distance) instead of being pulled through the wire
+      // Only an interior closest point has a side: around a vertex or a free wire
+      // end the side changes without crossing anything.
       const double cross = seg.x() * r.y() - seg.y() * r.x();
       const int side = cross > 0 ? 1 : -1;
-      const bool crossed = c.prev && c.side != 0 && side != c.side && dist < d_;
+      const bool interior = t > 0.0 && t < 1.0;
+      const bool crossed = interior && c.prev && c.side != 0 && side != c.side && dist < d_;
       if ((dist >= d_ && !crossed) || dist == 0.0) {
         c.st.stick = false;
         c.st.xi.setZero();
@@ -106,8 +109,8 @@ class NodeEdgeContactPair : public PairStyle {
       if (crossed) {
         nrm = -nrm;
         dist = -dist;
-      } else if (!c.prev) {
-        c.side = side;
+      } else {
+        c.side = interior ? side : 0;
       }
       const Vec3 vrel = v[c.node] - ((1 - t) * v[ed.a] + t * v[ed.b]);
       c.st.active = c.prev;
@@ -300,7 +303,6 @@ class NodeEdgeContactPair : public PairStyle {
     c.st.xi = other.st.xi;
     c.st.stick = other.st.stick;
     c.st.active = true;
-    if (other.side != 0) c.side = other.side;
   }
 
   double d_;

@@ -1,0 +1,75 @@
+// Morphology observables of a 2D wire in a circular cavity (MODELS.md §2.7):
+// A and B, the total squared curvature sum kappa_i^2 l0 of the hinges in the inner
+// disc of radius r / sqrt(2) and in the outer ring (equal areas); classic when
+// A / B < 0.5 (curvature near the wall). The net winding |sum zeta_i| / 2 pi of the
+// hinges inside the cavity is the spiral indicator.
+#include <cmath>
+
+#include "chain_select.hpp"
+#include "registry.hpp"
+
+namespace slender {
+
+class Morphology2dCompute : public ComputeStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("compute", name,
+                "2D crumpling morphology: A/B curvature criterion (classic vs plastic) and net "
+                "winding (spiral), MODELS.md §2.7");
+    s.real("radius", "cavity radius r").required().positive();
+    s.vector("center", "cavity centre").def(std::vector<double>{0, 0}).length(2, 3);
+    s.add("chains", ParamType::StringList, "chains to analyse (default: all)")
+        .def(std::vector<std::string>{});
+    return s;
+  }
+  Morphology2dCompute(Simulation& sim, const ParamValues& p)
+      : r_(p.real("radius")), c_(p.vec3("center")), names_(p.strings("chains")) {
+    if (sim.dimension() != 2)
+      throw InputError("compute style 'morphology2d' needs a 2D simulation");
+    select_chains(sim, names_);
+  }
+  void evaluate(Simulation& sim) override {
+    A_ = B_ = winding_ = 0.0;
+    auto& x = sim.nodes().x;
+    const double r_inner2 = 0.5 * r_ * r_;
+    double turn = 0.0;
+    for (auto* c : select_chains(sim, names_)) {
+      for (int h = 0; h < c->n_hinges(); ++h) {
+        int a, m, b;
+        c->hinge(h, a, m, b);
+        const double r2 = (x[m] - c_).head<2>().squaredNorm();
+        if (r2 >= r_ * r_) continue;  // only the wire inside the cavity
+        const Eigen::Vector2d e0 = (x[m] - x[a]).head<2>(), e1 = (x[b] - x[m]).head<2>();
+        const double zeta = std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
+        const int ne = c->n_edges();
+        const double l0 = c->closed ? 0.5 * (c->rest_length[(h - 1 + ne) % ne] + c->rest_length[h])
+                                    : 0.5 * (c->rest_length[h] + c->rest_length[h + 1]);
+        const double sq = zeta * zeta / l0;  // kappa^2 l0 with kappa = zeta / l0
+        (r2 < r_inner2 ? A_ : B_) += sq;
+        turn += zeta;
+      }
+    }
+    winding_ = std::abs(turn) / (2 * M_PI);
+  }
+  std::vector<std::string> value_keys() const override {
+    return {"A", "B", "ratio", "classic", "winding"};
+  }
+  double value(const std::string& key) const override {
+    if (key == "A") return A_;
+    if (key == "B") return B_;
+    if (key == "ratio") return B_ > 0 ? A_ / B_ : (A_ > 0 ? 1e300 : 0.0);
+    if (key == "classic") return (B_ > 0 && A_ / B_ < 0.5) ? 1.0 : 0.0;
+    if (key == "winding") return winding_;
+    return ComputeStyle::value(key);
+  }
+
+ private:
+  double r_;
+  Vec3 c_;
+  std::vector<std::string> names_;
+  double A_ = 0, B_ = 0, winding_ = 0;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::ComputeStyle, "morphology2d", slender::Morphology2dCompute)

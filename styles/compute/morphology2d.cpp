@@ -1,8 +1,11 @@
 // Morphology observables of a 2D wire in a circular cavity (MODELS.md §2.7):
 // A and B, the total squared curvature sum kappa_i^2 l0 of the hinges in the inner
 // disc of radius r / sqrt(2) and in the outer ring (equal areas); classic when
-// A / B < 0.5 (curvature near the wall). The net winding |sum zeta_i| / 2 pi of the
-// hinges inside the cavity is the spiral indicator.
+// A / B < 0.5 (curvature near the wall). Spiral indicator: the winding |sum zeta_i| /
+// 2 pi of each half of the wire inside the cavity (the two arms of a double spiral
+// turn in opposite senses along the wire, so the net winding of a double spiral is
+// ~0); "winding" is the larger of the two, "net_winding" the whole wire's.
+#include <algorithm>
 #include <cmath>
 
 #include "chain_select.hpp"
@@ -29,12 +32,14 @@ class Morphology2dCompute : public ComputeStyle {
     select_chains(sim, names_);
   }
   void evaluate(Simulation& sim) override {
-    A_ = B_ = winding_ = 0.0;
+    A_ = B_ = winding_ = net_ = 0.0;
     auto& x = sim.nodes().x;
     const double r_inner2 = 0.5 * r_ * r_;
-    double turn = 0.0;
+    double net = 0.0;
     for (auto* c : select_chains(sim, names_)) {
-      for (int h = 0; h < c->n_hinges(); ++h) {
+      double half[2] = {0.0, 0.0};
+      const int nh = c->n_hinges();
+      for (int h = 0; h < nh; ++h) {
         int a, m, b;
         c->hinge(h, a, m, b);
         const double r2 = (x[m] - c_).head<2>().squaredNorm();
@@ -46,13 +51,16 @@ class Morphology2dCompute : public ComputeStyle {
                                     : 0.5 * (c->rest_length[h] + c->rest_length[h + 1]);
         const double sq = zeta * zeta / l0;  // kappa^2 l0 with kappa = zeta / l0
         (r2 < r_inner2 ? A_ : B_) += sq;
-        turn += zeta;
+        half[2 * h < nh ? 0 : 1] += zeta;
       }
+      net += half[0] + half[1];
+      winding_ =
+          std::max({winding_, std::abs(half[0]) / (2 * M_PI), std::abs(half[1]) / (2 * M_PI)});
     }
-    winding_ = std::abs(turn) / (2 * M_PI);
+    net_ = std::abs(net) / (2 * M_PI);
   }
   std::vector<std::string> value_keys() const override {
-    return {"A", "B", "ratio", "classic", "winding"};
+    return {"A", "B", "ratio", "classic", "winding", "net_winding"};
   }
   double value(const std::string& key) const override {
     if (key == "A") return A_;
@@ -60,6 +68,7 @@ class Morphology2dCompute : public ComputeStyle {
     if (key == "ratio") return B_ > 0 ? A_ / B_ : (A_ > 0 ? 1e300 : 0.0);
     if (key == "classic") return (B_ > 0 && A_ / B_ < 0.5) ? 1.0 : 0.0;
     if (key == "winding") return winding_;
+    if (key == "net_winding") return net_;
     return ComputeStyle::value(key);
   }
 
@@ -67,7 +76,7 @@ class Morphology2dCompute : public ComputeStyle {
   double r_;
   Vec3 c_;
   std::vector<std::string> names_;
-  double A_ = 0, B_ = 0, winding_ = 0;
+  double A_ = 0, B_ = 0, winding_ = 0, net_ = 0;
 };
 
 }  // namespace slender

@@ -28,7 +28,20 @@ TEST(Morphology2dCompute, CurvatureNearTheWallIsClassic) {
   const double n = std::floor(5.0 / step) + 1;
   EXPECT_NEAR(sim.column("m.B"), (n - 2) * step * step, 1e-9);
   EXPECT_EQ(sim.column("m.classic"), 1.0);
-  EXPECT_NEAR(sim.column("m.winding"), (n - 2) * step / (2 * M_PI), 1e-9);
+  EXPECT_NEAR(sim.column("m.net_winding"), (n - 2) * step / (2 * M_PI), 1e-9);
+}
+
+TEST(Morphology2dCompute, DoubleSpiralWindsPerArmNotNet) {
+  // an S: two arcs turning in opposite senses, like the arms of a double spiral
+  Simulation sim(2, 1);
+  auto a = arc(2.0, 2 * M_PI);
+  std::vector<Vec3> pts;
+  for (auto it = a.rbegin(); it != a.rend(); ++it) pts.push_back(*it + Vec3(0, 0, 0));
+  for (size_t i = 1; i < a.size(); ++i) pts.push_back(Vec3(4.0 - a[i].x(), -a[i].y(), 0));
+  sim.add_chain("w", pts, 1.0, false);
+  sim.add_compute("m", "morphology2d", P({{"radius", 20.0}}));
+  EXPECT_LT(sim.column("m.net_winding"), 0.1);
+  EXPECT_GT(sim.column("m.winding"), 0.8);
 }
 
 TEST(Morphology2dCompute, CurvatureInTheCentreIsNotClassicAndWindingCountsTurns) {
@@ -38,7 +51,8 @@ TEST(Morphology2dCompute, CurvatureInTheCentreIsNotClassicAndWindingCountsTurns)
   EXPECT_EQ(sim.column("m.B"), 0.0);
   EXPECT_GT(sim.column("m.A"), 0.0);
   EXPECT_EQ(sim.column("m.classic"), 0.0);
-  EXPECT_NEAR(sim.column("m.winding"), 2.0, 0.1);
+  EXPECT_NEAR(sim.column("m.net_winding"), 2.0, 0.1);
+  EXPECT_NEAR(sim.column("m.winding"), 1.0, 0.1);  // each half turns once
   // the part of a wire outside the cavity does not count
   Simulation out(2, 1);
   out.add_chain("w", arc(12.0, 3.0), 1.0, false);

@@ -1,0 +1,75 @@
+-- The 2D crumpling scene of MODELS.md §2 (thesis ch. 3): an elasto-plastic wire
+-- pushed from two opposite channels into a circular cavity until it jams.
+-- Shared by classic.lua, spiral.lua and plastic.lua, which set the parameters.
+--
+-- Fixed: d = l0 = 1, k1 = 1000, k2 = 60, m = 1 (§1). Defaults marked [C] in §2.3:
+-- k_c = 10 k1 / d, d_c = 0.1 * 2 sqrt(m k_c d), k_st = k1 / d, v_th = 1e-3 v_in,
+-- mu_d = 0.9 mu_st; translational damping 0.01 sqrt(k1 m) (§2.1); jamming when the
+-- injection force averaged over 1000 steps exceeds 0.1 k1 l0 (§2.4); Gear q = 5 with
+-- dt = 0.02 sqrt(m / k1) (§2.5). The thesis' s is read as the feed speed (§2.6 (a)).
+local M = {}
+
+function M.run(p)
+  local f = slender.var("f", p.f)
+  local s = slender.var("s", p.s)
+  local yield = slender.var("yield", p.yield)
+  local mu = slender.var("mu", p.mu)
+  local hardening = slender.var("hardening", p.hardening or 0.05)
+  local seed = slender.var("seed", 1)
+  local max_phi = slender.var("max_phi", p.max_phi or 1.0)
+  local output = slender.var("output", true)
+  local name = p.name
+
+  local d, k1, k2, m = 1.0, 1000.0, 60.0, 1.0
+  local r = f * d
+  local kc = 10 * k1 / d
+  local dc = 0.1 * 2 * math.sqrt(m * kc * d)
+
+  local sim = slender.simulation { dimension = 2, seed = seed }
+  -- a straight wire along the diameter, three nodes into each channel; random
+  -- normal displacements of 0.01 d break the symmetry (§2.4)
+  local n = 2 * math.floor(r) + 7
+  sim:wire { name = "wire", nodes = n, spacing = d, start = { -(n - 1) / 2 * d, 0 }, mass = m,
+             perturb = 0.01 * d }
+  sim:bond("spring", { k = k1 })
+  sim:bond("bend2d/hysteresis", { k = k2, yield_curvature = yield, hardening_ratio = hardening })
+  sim:pair("contact/node-edge", { diameter = d, stiffness = kc, damping = dc, mu_static = mu,
+    mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s, skin = d })
+  -- channel nodes are kinematic, so the wall needs no openings
+  sim:fix("cavity", "wall/circle", { radius = r, diameter = d, stiffness = kc, damping = dc,
+    mu_static = mu, mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s })
+  sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(k1 * m) })
+  sim:fix("feed", "inject/wire", { chain = "wire", radius = r, speed = s, diameter = d,
+    jam_force = 0.1 * k1 * d, jam_window = 1000, max_phi = max_phi })
+  -- dt: 2.8x below the nominal "auto" step, which assumes one contact of overlap
+  -- d/10 per node; dense packings load nodes with several deeper contacts and
+  -- Gear q = 5 is stable only for omega dt < 0.42
+  sim:integrator("gear", { values = 5, dt = slender.var("dt", 0.02 * math.sqrt(m / k1)) })
+  sim:compute("count", "count", {})
+  sim:compute("shape", "morphology2d", { radius = r })
+  sim:thermo { every = 20000, file = name .. "_thermo.csv",
+    columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/node-edge.contacts",
+                "cavity.contacts", "energy.bend", "bend2d/hysteresis.dissipated", "shape.ratio",
+                "shape.winding", "shape.net_winding", "ke", "count.nodes" } }
+  if output then
+    sim:dump("traj", "h5md", { file = name .. ".h5", every = 50000,
+                               fields = { "position", "bend.plastic_curvature" } })
+  end
+
+  local t0 = slender.clock()
+  sim:run { steps = slender.var("max_steps", 1e9) }
+  local wall = slender.clock() - t0
+  slender.result { case = "crumple2d/" .. name, f = f, s = s, yield = yield, mu = mu, seed = seed,
+    phi = sim:value("feed.phi"), jammed = sim:value("feed.jammed"), force = sim:value("feed.force_avg"),
+    steps = sim:step(), wall_s = wall, nodes = sim:nnodes(),
+    contacts = sim:value("contact/node-edge.contacts"), ab_ratio = sim:value("shape.ratio"),
+    winding = sim:value("shape.winding"), ke_per_node = sim:value("ke") / sim:nnodes(),
+    node_steps_per_s = sim:nnodes() * sim:step() / math.max(wall, 1e-9) }
+  -- tests: -v check=true asserts that the run ended quasi-statically (a jam, not a burst)
+  if slender.var("check", false) then
+    assert(sim:value("ke") / sim:nnodes() < 0.1, "the run ended with kinetic energy " .. sim:value("ke"))
+  end
+  return sim
+end
+
+return M

@@ -184,6 +184,9 @@ ParamSpec guard_spec() {
   s.integer("every", "steps between checks (outputs are always checked)").def(10.0).min(1);
   s.real("max_step_fraction", "max |v| dt over the shortest rest length").def(0.5).positive();
   s.real("ke_factor", "max kinetic energy over the largest energy seen").def(100.0).positive();
+  s.real("max_strain", "max |edge length / rest length - 1| (a torn or crushed wire)")
+      .def(0.5)
+      .positive();
   s.string("last_good_file", "where the last good state is written")
       .def(std::string("slender_last_good.h5"));
   return s;
@@ -426,6 +429,7 @@ int l_guard(lua_State* L) {
   sim.guard.every = p.integer("every");
   sim.guard.max_step_fraction = p.real("max_step_fraction");
   sim.guard.ke_factor = p.real("ke_factor");
+  sim.guard.max_strain = p.real("max_strain");
   sim.guard.last_good_file = p.str("last_good_file");
   return 0;
 }

@@ -439,6 +439,19 @@ void Simulation::check_guard(long) {
       fail(os.str(), step);
     }
   }
+  // a wire torn apart or crushed: far beyond any elastic strain the styles model
+  for (auto& c : topo_.chains)
+    for (int e = 0; e < c.n_edges(); ++e) {
+      const double ratio =
+          (nodes_.x[c.edge_head(e)] - nodes_.x[c.edge_tail(e)]).norm() / c.rest_length[e];
+      if (std::abs(ratio - 1.0) > guard.max_strain) {
+        std::ostringstream os;
+        os << "edge " << e + 1 << " of chain '" << c.name << "' (nodes " << c.edge_tail(e) + 1
+           << "-" << c.edge_head(e) + 1 << ") is at " << ratio
+           << " times its rest length (guard max_strain " << guard.max_strain << ")";
+        fail(os.str(), step);
+      }
+    }
   double ke = kinetic_energy(), pe = std::abs(potential_energy());
   if (ke > guard.ke_factor * std::max(energy_scale_, pe) && ke > 1e-200) {
     std::ostringstream os;

@@ -28,6 +28,7 @@ struct GuardOptions {
   long every = 10;                 // steps between checks
   double max_step_fraction = 0.5;  // max |v| dt as a fraction of the shortest rest length
   double ke_factor = 100.0;        // kinetic energy may not exceed this times the energy scale
+  double max_strain = 0.5;         // an edge beyond (1 +- this) times its rest length has torn
   std::string last_good_file = "slender_last_good.h5";
 };
 

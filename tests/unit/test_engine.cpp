@@ -196,7 +196,7 @@ TEST(Guard, NodeLeavingEveryBoundingRegionStopsTheRun) {
   sim.verbose = false;
   sim.guard.last_good_file = "guard_test_bounds.h5";
   sim.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1.0, false);
-  sim.add_bond("spring", P({{"k", 1.0}}));
+  sim.add_bond("spring", P({{"k", 1000.0}}));  // stiff: the pair moves as a whole
   sim.add_region("box", "box",
                  P({{"lo", std::vector<double>{-1, -1}}, {"hi", std::vector<double>{3, 1}}}));
   EXPECT_THROW(sim.add_region("b2", "sphere", P({{"radius", -1.0}})), InputError);
@@ -213,6 +213,26 @@ TEST(Guard, NodeLeavingEveryBoundingRegionStopsTheRun) {
         << e.what();
   }
   std::remove("guard_test_bounds.h5");
+}
+
+TEST(Guard, ATornWireStopsTheRun) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.guard.last_good_file = "guard_test_torn.h5";
+  sim.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)}, 1.0, false);
+  sim.add_bond("spring", P({{"k", 10.0}}));
+  sim.set_group("end", {2});
+  sim.add_fix("pull", "force/constant",
+              P({{"group", std::string("end")}, {"force", std::vector<double>{20, 0}}}));
+  sim.set_integrator("verlet", P({{"dt", 0.01}}));
+  try {
+    sim.run(RunOptions{100000, 0, {}});
+    FAIL() << "the torn wire went unnoticed";
+  } catch (const InstabilityError& e) {
+    EXPECT_NE(std::string(e.what()).find("of chain 'w' (nodes 2-3) is at"), std::string::npos)
+        << e.what();
+  }
+  std::remove("guard_test_torn.h5");
 }
 
 TEST(StableDt, AutoUsesTheIntegratorLimit) {

@@ -14,11 +14,15 @@ class Bend2dBond : public BondStyle {
     ParamSpec s("bond", name,
                 "elastic 2D bending spring on the signed turning angle of each interior node");
     s.real("k", "bending spring k2 = YI/l0 (moment per radian)").required().positive();
+    s.real("damping", "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (MODELS.md §2.1)")
+        .def(0.0)
+        .nonnegative();
     s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
         .def(std::vector<std::string>{});
     return s;
   }
-  Bend2dBond(Simulation& sim, const ParamValues& p) : k_(p.real("k")), names_(p.strings("chains")) {
+  Bend2dBond(Simulation& sim, const ParamValues& p)
+      : k_(p.real("k")), gamma_(p.real("damping")), names_(p.strings("chains")) {
     if (sim.dimension() != 2)
       throw InputError("bond style 'bend2d' needs a 2D simulation (dimension = 2)");
     select_chains(sim, names_);
@@ -40,10 +44,12 @@ class Bend2dBond : public BondStyle {
         const Eigen::Vector2d e1 = (x[b] - x[m]).head<2>();
         const double cross = e0.x() * e1.y() - e0.y() * e1.x();
         const double zeta = std::atan2(cross, e0.dot(e1));
-        const double moment = k_ * zeta;
+        double moment = k_ * zeta;
         // dzeta/dx_b = z x e1/|e1|^2, dzeta/dx_a = z x e0/|e0|^2, z x v = (-v_y, v_x)
         const Eigen::Vector2d gb = Eigen::Vector2d(-e1.y(), e1.x()) / e1.squaredNorm();
         const Eigen::Vector2d ga = Eigen::Vector2d(-e0.y(), e0.x()) / e0.squaredNorm();
+        // dashpot on the turning rate: dzeta/dt = sum_j dzeta/dx_j . v_j
+        if (gamma_ > 0) moment += gamma_ * turning_rate(sim, a, m, b, ga, gb);
         f[b].head<2>() -= moment * gb;
         f[a].head<2>() -= moment * ga;
         f[m].head<2>() += moment * (ga + gb);
@@ -60,7 +66,13 @@ class Bend2dBond : public BondStyle {
   }
 
  private:
-  double k_;
+  static double turning_rate(const Simulation& sim, int a, int m, int b, const Eigen::Vector2d& ga,
+                             const Eigen::Vector2d& gb) {
+    auto& v = sim.nodes().v;
+    return gb.dot(v[b].head<2>()) + ga.dot(v[a].head<2>()) - (ga + gb).dot(v[m].head<2>());
+  }
+
+  double k_, gamma_;
   std::vector<std::string> names_;
   std::vector<const Chain*> chains_;
 };

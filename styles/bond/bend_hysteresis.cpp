@@ -44,6 +44,9 @@ class BendHysteresisBond : public BondStyle {
            "random initial kappa_pl, uniform in +-value (seeded symmetry breaking)")
         .def(0.0)
         .nonnegative();
+    s.real("damping", "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (MODELS.md §2.1)")
+        .def(0.0)
+        .nonnegative();
     s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
         .def(std::vector<std::string>{});
     return s;
@@ -55,6 +58,7 @@ class BendHysteresisBond : public BondStyle {
         ratio_(p.real("hardening_ratio")),
         delta_(p.has("transition") ? p.real("transition") : 0.5 * p.real("yield_curvature")),
         guard_(p.boolean("guard")),
+        gamma_(p.real("damping")),
         names_(p.strings("chains")) {
     if (sim.dimension() != 2)
       throw InputError("bond style 'bend2d/hysteresis' needs a 2D simulation (dimension = 2)");
@@ -168,9 +172,15 @@ class BendHysteresisBond : public BondStyle {
         dissipated_ += lost * l0;
         const Eigen::Vector2d gb = Eigen::Vector2d(-e1.y(), e1.x()) / e1.squaredNorm();
         const Eigen::Vector2d ga = Eigen::Vector2d(-e0.y(), e0.x()) / e0.squaredNorm();
-        f[b].head<2>() -= M * gb;
-        f[a].head<2>() -= M * ga;
-        f[m].head<2>() += M * (ga + gb);
+        double Mt = M;  // the dashpot adds gamma_r dzeta/dt (MODELS.md §2.1)
+        if (gamma_ > 0) {
+          auto& v = sim.nodes().v;
+          Mt += gamma_ *
+                (gb.dot(v[b].head<2>()) + ga.dot(v[a].head<2>()) - (ga + gb).dot(v[m].head<2>()));
+        }
+        f[b].head<2>() -= Mt * gb;
+        f[a].head<2>() -= Mt * ga;
+        f[m].head<2>() += Mt * (ga + gb);
         energy += stored * l0;
       }
     }
@@ -217,6 +227,7 @@ class BendHysteresisBond : public BondStyle {
 
   double k_, ky_, ratio_, delta_;
   bool guard_;
+  double gamma_;
   std::vector<std::string> names_;
   std::vector<const Chain*> chains_;
   Property<double>* kpl_ = nullptr;

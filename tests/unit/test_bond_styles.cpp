@@ -106,3 +106,43 @@ TEST(BondStyles, StiffestModeMatchesChainDispersion) {
   const double wb = 4 * std::sqrt(50.0 / 2.0);
   EXPECT_NEAR(sim.omega_max(), std::sqrt(4 * 800.0 / 2.0 + wb * wb), 1e-9);
 }
+
+TEST(BendStyles, DashpotDissipatesGammaTimesTurningRateSquared) {
+  // power of the dashpot forces: sum F . v = -gamma (dzeta/dt)^2 per hinge
+  for (const char* style : {"bend2d", "bend2d/hysteresis"}) {
+    auto make = [&](double gamma) {
+      auto s = std::make_unique<Simulation>(2, 1);
+      s->add_chain("w", {Vec3(-1, 0, 0), Vec3(0, 0, 0), Vec3(0.8, 0.6, 0)}, 1.0, false);
+      RawParams p = P({{"k", 60.0}, {"damping", gamma}});
+      if (std::string(style) == "bend2d/hysteresis") p["yield_curvature"] = 4.0;
+      s->add_bond(style, p);
+      s->nodes().v[0] = Vec3(0.1, 0.3, 0);
+      s->nodes().v[1] = Vec3(-0.2, 0.1, 0);
+      s->nodes().v[2] = Vec3(0.4, -0.5, 0);
+      s->compute_forces();
+      return s;
+    };
+    auto with = make(2.0), without = make(0.0);
+    double power = 0.0;
+    for (int i = 0; i < 3; ++i)
+      power += (with->nodes().f[i] - without->nodes().f[i]).dot(with->nodes().v[i]);
+    // dzeta/dt by finite differences of the turning angle along the velocities
+    auto angle = [](const std::vector<Vec3>& x) {
+      const Vec3 e0 = x[1] - x[0], e1 = x[2] - x[1];
+      return std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
+    };
+    std::vector<Vec3> xp = with->nodes().x, xm = xp;
+    const double h = 1e-6;
+    for (int i = 0; i < 3; ++i) {
+      xp[i] += h * with->nodes().v[i];
+      xm[i] -= h * with->nodes().v[i];
+    }
+    const double rate = (angle(xp) - angle(xm)) / (2 * h);
+    EXPECT_NEAR(power, -2.0 * rate * rate, 1e-6) << style;
+    EXPECT_LT(power, 0.0) << style;
+    // the dashpot conserves momentum
+    Vec3 sum = Vec3::Zero();
+    for (int i = 0; i < 3; ++i) sum += with->nodes().f[i] - without->nodes().f[i];
+    EXPECT_LT(sum.norm(), 1e-12) << style;
+  }
+}

@@ -4,7 +4,8 @@
 --
 -- Fixed: d = l0 = 1, k1 = 1000, k2 = 60, m = 1 (§1). Defaults marked [C] in §2.3:
 -- k_c = 10 k1 / d, d_c = 0.1 * 2 sqrt(m k_c d), k_st = k1 / d, v_th = 1e-3 v_in,
--- mu_d = 0.9 mu_st; translational damping 0.01 sqrt(k1 m) (§2.1); jamming when the
+-- mu_d = 0.9 mu_st; damping 0.01 sqrt(k1 m) on translations and 0.01 sqrt(k2 m) l0
+-- on the turning rate (§2.1); jamming when the
 -- injection force averaged over 1000 steps exceeds 0.1 k1 l0 (§2.4); Gear q = 5 with
 -- dt = 0.02 sqrt(m / k1) (§2.5). The thesis' s is read as the feed speed (§2.6 (a)).
 local M = {}
@@ -32,7 +33,9 @@ function M.run(p)
   sim:wire { name = "wire", nodes = n, spacing = d, start = { -(n - 1) / 2 * d, 0 }, mass = m,
              perturb = 0.01 * d }
   sim:bond("spring", { k = k1 })
-  sim:bond("bend2d/hysteresis", { k = k2, yield_curvature = yield, hardening_ratio = hardening })
+  -- bending dashpot gamma_r = 0.01 sqrt(k2 m) l0 (§2.1 [C])
+  sim:bond("bend2d/hysteresis", { k = k2, yield_curvature = yield, hardening_ratio = hardening,
+                                  damping = 0.01 * math.sqrt(k2 * m) * d })
   sim:pair("contact/node-edge", { diameter = d, stiffness = kc, damping = dc, mu_static = mu,
     mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s, skin = d })
   -- channel nodes are kinematic, so the wall needs no openings

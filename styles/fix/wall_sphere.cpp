@@ -88,13 +88,13 @@ class SphereWallFix : public FixStyle {
         continue;
       }
       const Vec3 n = (inside_ ? -1.0 : 1.0) * rel / dist;  // pushes back into the domain
-      double fn = 0.0;
-      f[i] += law_.force(delta, n, v[i], sim.dt, st, &fn);
+      double fn = 0.0, e_contact = 0.0;
+      f[i] += law_.force(delta, n, v[i], sim.dt, st, &fn, &e_contact);
       if (law_.frictional()) {
         (*xi_)[i] = st.xi;
         (*state_)[i] = (st.stick ? 1 : 0) | (st.active ? 2 : 0);
       }
-      e += law_.energy(delta);
+      e += e_contact;
       total_ += fn;
       ++contacts_;
     }

@@ -115,11 +115,12 @@ class NodeEdgeContactPair : public PairStyle {
       const Vec3 vrel = v[c.node] - ((1 - t) * v[ed.a] + t * v[ed.b]);
       c.st.active = c.prev;
       if (!c.prev) hand_over(k);
-      const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, c.st);
+      double e_contact = 0.0;
+      const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, c.st, nullptr, &e_contact);
       f[c.node] += F;
       f[ed.a] -= (1 - t) * F;
       f[ed.b] -= t * F;
-      energy += law_.energy(d_ - dist);
+      energy += e_contact;
       ++contacts_;
     }
     return energy;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "chain_select.hpp"
+#include "hinge2d.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -40,19 +41,12 @@ class Bend2dBond : public BondStyle {
       for (int h = 0; h < nh; ++h) {
         int a, m, b;
         c->hinge(h, a, m, b);
-        const Eigen::Vector2d e0 = (x[m] - x[a]).head<2>();
-        const Eigen::Vector2d e1 = (x[b] - x[m]).head<2>();
-        const double cross = e0.x() * e1.y() - e0.y() * e1.x();
-        const double zeta = std::atan2(cross, e0.dot(e1));
+        const Hinge2d g(x[a], x[m], x[b]);
+        const double zeta = g.zeta;
         double moment = k_ * zeta;
-        // dzeta/dx_b = z x e1/|e1|^2, dzeta/dx_a = z x e0/|e0|^2, z x v = (-v_y, v_x)
-        const Eigen::Vector2d gb = Eigen::Vector2d(-e1.y(), e1.x()) / e1.squaredNorm();
-        const Eigen::Vector2d ga = Eigen::Vector2d(-e0.y(), e0.x()) / e0.squaredNorm();
-        // dashpot on the turning rate: dzeta/dt = sum_j dzeta/dx_j . v_j
-        if (gamma_ > 0) moment += gamma_ * turning_rate(sim, a, m, b, ga, gb);
-        f[b].head<2>() -= moment * gb;
-        f[a].head<2>() -= moment * ga;
-        f[m].head<2>() += moment * (ga + gb);
+        // dashpot on the turning rate (MODELS.md §2.1)
+        if (gamma_ > 0) moment += gamma_ * g.rate(sim.nodes().v, a, m, b);
+        g.apply(f, a, m, b, moment);
         energy += 0.5 * k_ * zeta * zeta;
       }
     }
@@ -66,12 +60,6 @@ class Bend2dBond : public BondStyle {
   }
 
  private:
-  static double turning_rate(const Simulation& sim, int a, int m, int b, const Eigen::Vector2d& ga,
-                             const Eigen::Vector2d& gb) {
-    auto& v = sim.nodes().v;
-    return gb.dot(v[b].head<2>()) + ga.dot(v[a].head<2>()) - (ga + gb).dot(v[m].head<2>());
-  }
-
   double k_, gamma_;
   std::vector<std::string> names_;
   std::vector<const Chain*> chains_;

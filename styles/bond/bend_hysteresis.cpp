@@ -17,6 +17,7 @@
 #include <random>
 
 #include "chain_select.hpp"
+#include "hinge2d.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -85,7 +86,8 @@ class BendHysteresisBond : public BondStyle {
         int a, m, b;
         c->hinge(h, a, m, b);
         const double l0 = rest(*c, h);
-        const double kappa = turning_angle(sim.nodes().x, a, m, b) / l0;
+        const double kappa =
+            Hinge2d(sim.nodes().x[a], sim.nodes().x[m], sim.nodes().x[b]).zeta / l0;
         double kpl = (*kpl_)[m];  // a copy: no flow is committed here
         double stored = 0.0;
         moment(kappa, kpl, k_ * l0, &stored);
@@ -162,25 +164,16 @@ class BendHysteresisBond : public BondStyle {
         int a, m, b;
         c->hinge(h, a, m, b);
         const double l0 = rest(*c, h), Ke = k_ * l0;
-        const Eigen::Vector2d e0 = (x[m] - x[a]).head<2>();
-        const Eigen::Vector2d e1 = (x[b] - x[m]).head<2>();
-        const double zeta = std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
+        const Hinge2d g(x[a], x[m], x[b]);
+        const double zeta = g.zeta;
         const double kappa = zeta / l0;
         double& kpl = (*kpl_)[m];
         double stored = 0.0, lost = 0.0;
         const double M = moment(kappa, kpl, Ke, &stored, &lost);
         dissipated_ += lost * l0;
-        const Eigen::Vector2d gb = Eigen::Vector2d(-e1.y(), e1.x()) / e1.squaredNorm();
-        const Eigen::Vector2d ga = Eigen::Vector2d(-e0.y(), e0.x()) / e0.squaredNorm();
-        double Mt = M;  // the dashpot adds gamma_r dzeta/dt (MODELS.md §2.1)
-        if (gamma_ > 0) {
-          auto& v = sim.nodes().v;
-          Mt += gamma_ *
-                (gb.dot(v[b].head<2>()) + ga.dot(v[a].head<2>()) - (ga + gb).dot(v[m].head<2>()));
-        }
-        f[b].head<2>() -= Mt * gb;
-        f[a].head<2>() -= Mt * ga;
-        f[m].head<2>() += Mt * (ga + gb);
+        // the dashpot adds gamma_r dzeta/dt (MODELS.md §2.1)
+        const double Mt = gamma_ > 0 ? M + gamma_ * g.rate(sim.nodes().v, a, m, b) : M;
+        g.apply(f, a, m, b, Mt);
         energy += stored * l0;
       }
     }
@@ -213,10 +206,6 @@ class BendHysteresisBond : public BondStyle {
   }
 
  private:
-  static double turning_angle(const std::vector<Vec3>& x, int a, int m, int b) {
-    const Eigen::Vector2d e0 = (x[m] - x[a]).head<2>(), e1 = (x[b] - x[m]).head<2>();
-    return std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
-  }
   // rest length that a hinge stands for: the mean of its two edges
   static double rest(const Chain& c, int h) {
     const int ne = c.n_edges();

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "chain_select.hpp"
+#include "hinge2d.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -44,8 +45,7 @@ class Morphology2dCompute : public ComputeStyle {
         c->hinge(h, a, m, b);
         const double r2 = (x[m] - c_).head<2>().squaredNorm();
         if (r2 >= r_ * r_) continue;  // only the wire inside the cavity
-        const Eigen::Vector2d e0 = (x[m] - x[a]).head<2>(), e1 = (x[b] - x[m]).head<2>();
-        const double zeta = std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
+        const double zeta = Hinge2d(x[a], x[m], x[b]).zeta;
         const int ne = c->n_edges();
         const double l0 = c->closed ? 0.5 * (c->rest_length[(h - 1 + ne) % ne] + c->rest_length[h])
                                     : 0.5 * (c->rest_length[h] + c->rest_length[h + 1]);

@@ -1,4 +1,5 @@
 // Unit tests of bend2d/hysteresis (MODELS.md §2.2): one hinge driven through
+// Covers styles/bond/bend_hysteresis.cpp.
 // curvature histories, and the elastic limit against bend2d.
 #include <cmath>
 #include <random>

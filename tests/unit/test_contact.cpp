@@ -1,5 +1,6 @@
 // Unit tests of the shared contact law through contact/node-edge and wall/circle
-// (MODELS.md §2.3).
+// Covers styles/pair/contact_node_edge.cpp, src/contact_law.hpp and the friction of
+// styles/fix/wall_sphere.cpp. (MODELS.md §2.3).
 #include <cmath>
 
 #include "helpers.hpp"

@@ -1,4 +1,5 @@
 // Unit tests of the fix styles: walls, constant force, clamp, viscous damping.
+// Covers styles/fix/{wall_sphere,force_constant,clamp,viscous}.cpp.
 #include <cmath>
 
 #include "helpers.hpp"

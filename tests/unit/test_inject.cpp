@@ -1,4 +1,5 @@
 // Unit tests of inject/wire and of wall openings.
+// Covers styles/fix/inject_wire.cpp and the openings of styles/fix/wall_sphere.cpp.
 #include <cmath>
 
 #include "helpers.hpp"

@@ -10,7 +10,8 @@
 
 namespace slender {
 
-// Per-contact history: a stuck contact carries the stick-spring elongation xi.
+// Per-contact history: a stuck contact carries the stick-spring elongation xi; a
+// slipping one its last slip direction.
 struct FrictionState {
   Vec3 xi = Vec3::Zero();
   bool stick = false;
@@ -111,7 +112,22 @@ struct ContactLaw {
         return f + ft;
       }
     }
-    if (vt_norm > 0.0) f -= (mu_dynamic * fn / vt_norm) * vt;
+    if (vt_norm > 0.0) {
+      const Vec3 dir = vt / vt_norm;
+      // While slipping, xi holds the last slip direction. A tangential velocity that
+      // reversed passed through rest within the step: the contact sticks again.
+      // (Otherwise the full dynamic force flips every step and pumps energy in.)
+      if (st.xi.dot(dir) < 0.0) {
+        st.stick = true;
+        st.xi = vt * dt;
+        st.xi -= st.xi.dot(n) * n;
+        const Vec3 ft = -stick_stiffness * st.xi;
+        if (ft.norm() <= mu_static * fn) return f + ft;
+        st.stick = false;
+      }
+      st.xi = dir;
+      f -= (mu_dynamic * fn) * dir;
+    }
     return f;
   }
 };

@@ -3,6 +3,7 @@
 // styles/fix/wall_sphere.cpp. (MODELS.md §2.3).
 #include <cmath>
 
+#include "contact_law.hpp"
 #include "helpers.hpp"
 
 using namespace std::string_literals;
@@ -170,6 +171,60 @@ TEST(NodeEdgeContactPair, StickSlipTransitionAtTheStaticCoefficient) {
   }
   // frictionless: it slides at once (0.05 in t = (0.3 / rate)^(1/3) gives T/N ~ 0.011)
   EXPECT_LT(slip_ratio(0.0, false), 0.02);
+}
+
+TEST(NodeEdgeContactPair, ASlidingBlockStopsAndStaysStuck) {
+  // dynamic friction decelerates the block; when its velocity reverses within a step
+  // the contact sticks again instead of chattering with the full force mu_d N
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.add_chain("floor", {Vec3(-50, 0, 0), Vec3(50, 0, 0)}, 1.0, false);
+  sim.add_chain("block", {Vec3(-0.5, 0.97, 0), Vec3(0.5, 0.97, 0)}, 1.0, false);
+  sim.add_fix("hold", "clamp", P({{"group", std::string("floor")}}));
+  sim.add_bond("spring", P({{"k", 100.0}, {"chains", std::vector<std::string>{"block"}}}));
+  sim.add_pair(
+      "contact/node-edge",
+      P({{"stiffness", 1e3}, {"damping", 10.0}, {"mu_static", 0.5}, {"stick_stiffness", 100.0}}));
+  sim.add_fix("press", "force/constant",
+              P({{"group", std::string("block")}, {"force", std::vector<double>{0, -1.0}}}));
+  sim.set_integrator("verlet", P({{"dt", 0.01}}));
+  sim.run(RunOptions{2000, 0, {}});  // settle
+  for (int i : sim.group("block")) sim.nodes().v[i].x() = 0.5;
+  sim.run(RunOptions{3000, 0, {}});  // slides about v^2 / (2 mu_d g) = 0.28, then stops
+  const Vec3 x = sim.nodes().x[sim.group("block")[0]];
+  double vmax = 0.0;
+  sim.run(RunOptions{2000, 1, [&](Simulation& s) {
+                       for (int i : s.group("block"))
+                         vmax = std::max(vmax, std::abs(s.nodes().v[i].x()));
+                       return false;
+                     }});
+  EXPECT_NEAR(x.x(), -0.5 + 0.25 / (2 * 0.45), 0.05);  // it did slide and stop
+  // stuck: it only rings on the (undamped) stick spring, far below the sliding speed
+  EXPECT_LT(vmax, 0.01);
+  EXPECT_LT(std::abs(sim.nodes().x[sim.group("block")[0]].x() - x.x()), 1e-3);
+}
+
+TEST(ContactLaw, SlipThatReversesSticksAgain) {
+  ContactLaw law;
+  law.stiffness = 1e3;
+  law.mu_static = 0.5;
+  law.mu_dynamic = 0.45;
+  law.stick_stiffness = 100.0;
+  law.slip_velocity = 1e-4;
+  FrictionState st;
+  st.active = true;
+  st.stick = false;
+  st.xi = Vec3(1, 0, 0);  // slipping along +x
+  const Vec3 n(0, 1, 0);
+  double fn = 0.0;
+  Vec3 f = law.force(0.1, n, Vec3(0.01, 0, 0), 0.01, st, &fn);
+  EXPECT_NEAR(f.x(), -0.45 * fn, 1e-12);  // full dynamic friction against the motion
+  EXPECT_FALSE(st.stick);
+  // the tangential velocity reversed: it passed through rest, so it sticks again and
+  // feels only the fresh stick spring, not mu_d N in the other direction
+  f = law.force(0.1, n, Vec3(-0.01, 0, 0), 0.01, st, &fn);
+  EXPECT_TRUE(st.stick);
+  EXPECT_NEAR(f.x(), 100.0 * 0.01 * 0.01, 1e-12);
 }
 
 TEST(SphereWallFix, StickSlipTransitionAtTheStaticCoefficient) {

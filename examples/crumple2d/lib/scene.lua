@@ -52,6 +52,8 @@ function M.run(p)
   -- while dense packings load nodes with several deeper contacts and Gear q = 5 is
   -- stable only for omega dt < 0.42.
   sim:integrator("gear", { values = 5, dt = slender.var("dt", 0.01 * math.sqrt(m / k1)) })
+  -- an edge strained beyond max_strain stops the run as a torn wire
+  sim:guard { max_strain = slender.var("max_strain", 0.5) }
   sim:compute("count", "count", {})
   sim:compute("shape", "morphology2d", { radius = r })
   sim:thermo { every = 20000, file = name .. "_thermo.csv",

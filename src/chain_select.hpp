@@ -2,6 +2,7 @@
 // smallest node mass among them (for stable time-step estimates).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -40,5 +41,39 @@ inline double min_rest(const std::vector<const Chain*>& chains) {
     for (double r : c->rest_length) l = std::min(l, r);
   return l;
 }
+
+// A bond style that acts on the chains named in its "chains" parameter (all by
+// default): the names are checked at the deck line, bound at every run.
+class ChainBondStyle : public BondStyle {
+ public:
+  static void declare_chains(ParamSpec& s) {
+    s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
+        .def(std::vector<std::string>{});
+  }
+  ChainBondStyle(Simulation& sim, const ParamValues& p) : names_(p.strings("chains")) {
+    select_chains(sim, names_);
+  }
+  void setup(Simulation& sim) override { chains_ = select_chains(sim, names_); }
+
+ protected:
+  // The bound chains; binds on first use outside a run (a direct compute_forces).
+  const std::vector<const Chain*>& chains(Simulation& sim) {
+    if (chains_.empty()) setup(sim);
+    return chains_;
+  }
+  // Highest mode of a uniform chain of springs k: omega^2 = 4k / m.
+  double stretch_frequency(const Simulation& sim, double k) const {
+    auto ch = select_chains(sim, names_);
+    return ch.empty() ? 0.0 : 2.0 * std::sqrt(k / min_mass(sim, ch));
+  }
+  // Zig-zag mode of bending springs k2: zeta = 4u/l, omega^2 = 16 k2 / (m l^2).
+  double bend_frequency(const Simulation& sim, double k) const {
+    auto ch = select_chains(sim, names_);
+    return ch.empty() ? 0.0 : 4.0 * std::sqrt(k / min_mass(sim, ch)) / min_rest(ch);
+  }
+
+  std::vector<std::string> names_;
+  std::vector<const Chain*> chains_;
+};
 
 }  // namespace slender

@@ -104,8 +104,25 @@ class IntegratorStyle : public Style {
   // Largest omega*dt for which the scheme is stable on an undamped oscillator.
   virtual double stability_limit() const = 0;
   // Requested time step, or <= 0 for "auto".
-  virtual double requested_dt() const = 0;
-  virtual double safety() const { return 0.5; }
+  double requested_dt() const { return dt_; }
+  double safety() const { return safety_; }
+
+ protected:
+  // The "dt" and "safety" keys every integrator takes.
+  static void declare_time_step(ParamSpec& s, const std::string& dt_help) {
+    s.add("dt", ParamType::RealOrAuto, dt_help).def(std::string("auto")).positive();
+    s.real("safety", "fraction of the stable step used by dt = \"auto\"")
+        .def(0.5)
+        .positive()
+        .max(1.0);
+  }
+  void read_time_step(const ParamValues& p) {
+    dt_ = p.is_auto("dt") ? 0.0 : p.real("dt");
+    safety_ = p.real("safety");
+  }
+
+ private:
+  double dt_ = 0.0, safety_ = 0.5;
 };
 
 class RegionStyle : public Style {

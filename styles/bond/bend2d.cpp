@@ -9,7 +9,7 @@
 
 namespace slender {
 
-class Bend2dBond : public BondStyle {
+class Bend2dBond : public ChainBondStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("bond", name,
@@ -18,25 +18,21 @@ class Bend2dBond : public BondStyle {
     s.real("damping", "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (MODELS.md §2.1)")
         .def(0.0)
         .nonnegative();
-    s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
-        .def(std::vector<std::string>{});
+    declare_chains(s);
     return s;
   }
   Bend2dBond(Simulation& sim, const ParamValues& p)
-      : k_(p.real("k")), gamma_(p.real("damping")), names_(p.strings("chains")) {
+      : ChainBondStyle(sim, p), k_(p.real("k")), gamma_(p.real("damping")) {
     if (sim.dimension() != 2)
       throw InputError("bond style 'bend2d' needs a 2D simulation (dimension = 2)");
-    select_chains(sim, names_);
   }
-  void setup(Simulation& sim) override { chains_ = select_chains(sim, names_); }
   const char* energy_category() const override { return "bend"; }
 
   double compute(Simulation& sim) override {
-    if (chains_.empty()) setup(sim);
     auto& x = sim.nodes().x;
     auto& f = sim.nodes().f;
     double energy = 0.0;
-    for (auto* c : chains_) {
+    for (auto* c : chains(sim)) {
       const int nh = c->n_hinges();
       for (int h = 0; h < nh; ++h) {
         int a, m, b;
@@ -52,17 +48,10 @@ class Bend2dBond : public BondStyle {
     }
     return energy;
   }
-  double max_frequency(const Simulation& sim) const override {
-    auto ch = select_chains(sim, names_);
-    if (ch.empty()) return 0.0;
-    // zig-zag mode: zeta = 4u/l, so omega^2 = 16 k2 / (m l^2)
-    return 4.0 * std::sqrt(k_ / min_mass(sim, ch)) / min_rest(ch);
-  }
+  double max_frequency(const Simulation& sim) const override { return bend_frequency(sim, k_); }
 
  private:
   double k_, gamma_;
-  std::vector<std::string> names_;
-  std::vector<const Chain*> chains_;
 };
 
 }  // namespace slender

@@ -22,7 +22,7 @@
 
 namespace slender {
 
-class BendHysteresisBond : public BondStyle {
+class BendHysteresisBond : public ChainBondStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("bond", name,
@@ -48,19 +48,18 @@ class BendHysteresisBond : public BondStyle {
     s.real("damping", "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (MODELS.md §2.1)")
         .def(0.0)
         .nonnegative();
-    s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
-        .def(std::vector<std::string>{});
+    declare_chains(s);
     return s;
   }
 
   BendHysteresisBond(Simulation& sim, const ParamValues& p)
-      : k_(p.real("k")),
+      : ChainBondStyle(sim, p),
+        k_(p.real("k")),
         ky_(p.real("yield_curvature")),
         ratio_(p.real("hardening_ratio")),
         delta_(p.has("transition") ? p.real("transition") : 0.5 * p.real("yield_curvature")),
         guard_(p.boolean("guard")),
-        gamma_(p.real("damping")),
-        names_(p.strings("chains")) {
+        gamma_(p.real("damping")) {
     if (sim.dimension() != 2)
       throw InputError("bond style 'bend2d/hysteresis' needs a 2D simulation (dimension = 2)");
     if (delta_ > ky_)
@@ -96,9 +95,8 @@ class BendHysteresisBond : public BondStyle {
     recoverable_ = recoverable0_;
   }
   void setup(Simulation& sim) override {
-    chains_ = select_chains(sim, names_);
-    auto& n = sim.nodes();
-    kpl_ = n.find<double>("bend.plastic_curvature");
+    ChainBondStyle::setup(sim);
+    kpl_ = sim.nodes().find<double>("bend.plastic_curvature");
   }
   const char* energy_category() const override { return "bend"; }
 
@@ -154,11 +152,10 @@ class BendHysteresisBond : public BondStyle {
   }
 
   double compute(Simulation& sim) override {
-    if (chains_.empty()) setup(sim);
     auto& x = sim.nodes().x;
     auto& f = sim.nodes().f;
     double energy = 0.0;
-    for (auto* c : chains_) {
+    for (auto* c : chains(sim)) {
       const int nh = c->n_hinges();
       for (int h = 0; h < nh; ++h) {
         int a, m, b;
@@ -180,12 +177,8 @@ class BendHysteresisBond : public BondStyle {
     recoverable_ = energy;
     return energy;
   }
-  double max_frequency(const Simulation& sim) const override {
-    auto ch = select_chains(sim, names_);
-    if (ch.empty()) return 0.0;
-    // the elastic slope is the stiffest (K_h < K_e): as bend2d
-    return 4.0 * std::sqrt(k_ / min_mass(sim, ch)) / min_rest(ch);
-  }
+  // the elastic slope is the stiffest (K_h < K_e): as bend2d
+  double max_frequency(const Simulation& sim) const override { return bend_frequency(sim, k_); }
   std::vector<std::string> value_keys() const override {
     return {"dissipated", "work", "recoverable"};
   }
@@ -217,8 +210,6 @@ class BendHysteresisBond : public BondStyle {
   double k_, ky_, ratio_, delta_;
   bool guard_;
   double gamma_;
-  std::vector<std::string> names_;
-  std::vector<const Chain*> chains_;
   Property<double>* kpl_ = nullptr;
   double dissipated_ = 0.0, recoverable_ = 0.0, recoverable0_ = 0.0;
 };

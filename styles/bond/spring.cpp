@@ -7,26 +7,21 @@
 
 namespace slender {
 
-class SpringBond : public BondStyle {
+class SpringBond : public ChainBondStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("bond", name, "Hookean stretching spring along every edge of a chain");
     s.real("k", "spring stiffness k1 = YA/l0 (force per length)").required().positive();
-    s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
-        .def(std::vector<std::string>{});
+    declare_chains(s);
     return s;
   }
-  SpringBond(Simulation& sim, const ParamValues& p) : k_(p.real("k")), names_(p.strings("chains")) {
-    select_chains(sim, names_);  // validates the names now, at the deck line
-  }
-  void setup(Simulation& sim) override { chains_ = select_chains(sim, names_); }
+  SpringBond(Simulation& sim, const ParamValues& p) : ChainBondStyle(sim, p), k_(p.real("k")) {}
   const char* energy_category() const override { return "stretch"; }
   double compute(Simulation& sim) override {
-    if (chains_.empty()) setup(sim);
     auto& x = sim.nodes().x;
     auto& f = sim.nodes().f;
     double energy = 0.0;
-    for (auto* c : chains_) {
+    for (auto* c : chains(sim)) {
       const int ne = c->n_edges();
       for (int e = 0; e < ne; ++e) {
         const int a = c->edge_tail(e), b = c->edge_head(e);
@@ -41,12 +36,7 @@ class SpringBond : public BondStyle {
     }
     return energy;
   }
-  double max_frequency(const Simulation& sim) const override {
-    auto ch = select_chains(sim, names_);
-    if (ch.empty()) return 0.0;
-    // zone-boundary mode of a uniform chain: omega^2 = 4k/m
-    return 2.0 * std::sqrt(k_ / min_mass(sim, ch));
-  }
+  double max_frequency(const Simulation& sim) const override { return stretch_frequency(sim, k_); }
   std::vector<std::string> value_keys() const override { return {"k"}; }
   double value(const std::string& key) const override {
     if (key == "k") return k_;
@@ -55,8 +45,6 @@ class SpringBond : public BondStyle {
 
  private:
   double k_;
-  std::vector<std::string> names_;
-  std::vector<const Chain*> chains_;
 };
 
 }  // namespace slender

@@ -11,13 +11,7 @@ class FireIntegrator : public IntegratorStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("integrator", name, "FIRE minimiser: inertial relaxation to a static equilibrium");
-    s.add("dt", ParamType::RealOrAuto, "initial time step, or \"auto\"")
-        .def(std::string("auto"))
-        .positive();
-    s.real("safety", "fraction of the stable step used by dt = \"auto\"")
-        .def(0.5)
-        .positive()
-        .max(1.0);
+    declare_time_step(s, "initial time step, or \"auto\"");
     s.real("dt_max", "largest step as a multiple of the initial one").def(10.0).min(1.0);
     s.real("alpha", "initial velocity-mixing parameter").def(0.1).positive().max(1.0);
     s.integer("n_min", "downhill steps before the step may grow").def(5.0).min(0);
@@ -31,17 +25,15 @@ class FireIntegrator : public IntegratorStyle {
     return s;
   }
   FireIntegrator(Simulation&, const ParamValues& p)
-      : dt_(p.is_auto("dt") ? 0.0 : p.real("dt")),
-        safety_(p.real("safety")),
-        dtmax_factor_(p.real("dt_max")),
+      : dtmax_factor_(p.real("dt_max")),
         alpha0_(p.real("alpha")),
         nmin_(p.integer("n_min")),
         finc_(p.real("f_inc")),
         fdec_(p.real("f_dec")),
         falpha_(p.real("f_alpha")),
-        dtmin_factor_(p.real("dt_min")) {}
-  double requested_dt() const override { return dt_; }
-  double safety() const override { return safety_; }
+        dtmin_factor_(p.real("dt_min")) {
+    read_time_step(p);
+  }
   double stability_limit() const override { return 2.0; }
   void setup(Simulation& sim) override {
     if (initialized_) {
@@ -109,7 +101,7 @@ class FireIntegrator : public IntegratorStyle {
   }
 
  private:
-  double dt_, safety_, dtmax_factor_, alpha0_;
+  double dtmax_factor_, alpha0_;
   long nmin_;
   double finc_, fdec_, falpha_, dtmin_factor_;
   bool initialized_ = false;

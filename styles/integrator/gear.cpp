@@ -19,19 +19,12 @@ class GearIntegrator : public IntegratorStyle {
         .def(5.0)
         .min(4)
         .max(6);
-    s.add("dt", ParamType::RealOrAuto, "time step, or \"auto\" = safety * limit / omega_max")
-        .def(std::string("auto"))
-        .positive();
-    s.real("safety", "fraction of the stable step used by dt = \"auto\"")
-        .def(0.5)
-        .positive()
-        .max(1.0);
+    declare_time_step(s, "time step, or \"auto\" = safety * limit / omega_max");
     return s;
   }
   GearIntegrator(Simulation& sim, const ParamValues& p)
-      : q_(static_cast<int>(p.integer("values"))),
-        dt_(p.is_auto("dt") ? 0.0 : p.real("dt")),
-        safety_(p.real("safety")) {
+      : q_(static_cast<int>(p.integer("values"))) {
+    read_time_step(p);
     static const double c4[] = {1.0 / 6, 5.0 / 6, 1.0, 1.0 / 3};
     static const double c5[] = {19.0 / 120, 3.0 / 4, 1.0, 1.0 / 2, 1.0 / 12};
     static const double c6[] = {3.0 / 20, 251.0 / 360, 1.0, 11.0 / 18, 1.0 / 6, 1.0 / 60};
@@ -40,8 +33,6 @@ class GearIntegrator : public IntegratorStyle {
     for (int k = 2; k < q_; ++k)
       r_[k] = &sim.nodes().require<Vec3>("gear.r" + std::to_string(k), Vec3::Zero());
   }
-  double requested_dt() const override { return dt_; }
-  double safety() const override { return safety_; }
   // Largest omega dt with |amplification| <= 1 on an undamped oscillator,
   // measured by tests/unit/test_integrators.cpp.
   double stability_limit() const override { return q_ == 4 ? 1.41 : q_ == 5 ? 0.42 : 0.48; }
@@ -106,7 +97,6 @@ class GearIntegrator : public IntegratorStyle {
 
  private:
   int q_;
-  double dt_, safety_;
   std::array<double, 6> c_{};
   std::array<Property<Vec3>*, 6> r_{};
   bool initialized_ = false;

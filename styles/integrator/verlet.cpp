@@ -8,19 +8,10 @@ class VelocityVerletIntegrator : public IntegratorStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("integrator", name, "velocity Verlet, 2nd order, symplectic (omega dt < 2)");
-    s.add("dt", ParamType::RealOrAuto, "time step, or \"auto\" = safety * 2 / omega_max")
-        .def(std::string("auto"))
-        .positive();
-    s.real("safety", "fraction of the stable step used by dt = \"auto\"")
-        .def(0.5)
-        .positive()
-        .max(1.0);
+    declare_time_step(s, "time step, or \"auto\" = safety * 2 / omega_max");
     return s;
   }
-  VelocityVerletIntegrator(Simulation&, const ParamValues& p)
-      : dt_(p.is_auto("dt") ? 0.0 : p.real("dt")), safety_(p.real("safety")) {}
-  double requested_dt() const override { return dt_; }
-  double safety() const override { return safety_; }
+  VelocityVerletIntegrator(Simulation&, const ParamValues& p) { read_time_step(p); }
   double stability_limit() const override { return 2.0; }
   void setup(Simulation&) override {}
   void step(Simulation& sim) override {
@@ -35,9 +26,6 @@ class VelocityVerletIntegrator : public IntegratorStyle {
     for (size_t i = 0; i < N; ++i) n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
     sim.end_of_step();
   }
-
- private:
-  double dt_, safety_;
 };
 
 }  // namespace slender

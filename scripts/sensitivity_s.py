@@ -18,8 +18,8 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def run(slender, deck, f, reading, value, speed_b, seed):
-    args = [slender, "-q", os.path.join(ROOT, "examples", "crumple2d", deck + ".lua"),
+def run(slender, examples, deck, f, reading, value, speed_b, seed):
+    args = [slender, "-q", os.path.join(examples, "crumple2d", deck + ".lua"),
             "-v", f"f={f}", "-v", "output=false", "-v", f"seed={seed}"]
     if reading == "a":
         args += ["-v", f"s={value}", "-v", "hardening=0.05"]
@@ -44,6 +44,8 @@ def run(slender, deck, f, reading, value, speed_b, seed):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
+    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"),
+                    help="examples folder (a copy keeps a long study independent of edits)")
     ap.add_argument("--deck", default="classic")
     ap.add_argument("--f", type=float, default=10)
     ap.add_argument("--values", type=float, nargs="+", default=[0.04, 0.06, 0.08])
@@ -54,7 +56,7 @@ def main():
     a = ap.parse_args()
     jobs = [(r, v, s) for r in ("a", "b") for v in a.values for s in a.seeds]
     with cf.ThreadPoolExecutor(a.jobs) as ex:
-        rows = list(ex.map(lambda j: run(a.slender, a.deck, a.f, j[0], j[1], a.speed_b, j[2]), jobs))
+        rows = list(ex.map(lambda j: run(a.slender, a.examples, a.deck, a.f, j[0], j[1], a.speed_b, j[2]), jobs))
     os.makedirs(a.out, exist_ok=True)
     keys = sorted({k for r in rows for k in r})
     stem = os.path.join(a.out, f"s_sensitivity_{a.deck}_f{a.f:g}")

@@ -174,6 +174,8 @@ ParamSpec thermo_spec() {
         "step, time, dt, nodes, ke, pe, etotal, fmax, energy.<category>, <id>.<key>")
       .def(std::vector<std::string>{"step", "time", "ke", "pe", "etotal"});
   s.string("file", "CSV file (same columns)");
+  s.boolean("append", "append to an existing CSV (a restarted run) instead of replacing it")
+      .def(false);
   s.boolean("console", "print to the console").def(true);
   s.real("progress", "seconds between progress/ETA lines").def(5.0).positive();
   return s;
@@ -402,6 +404,7 @@ int l_thermo(lua_State* L) {
   sim.thermo.every = p.integer("every");
   sim.thermo.columns = p.strings("columns");
   sim.thermo.file = p.has("file") ? p.str("file") : "";
+  sim.thermo.append = p.boolean("append");
   sim.thermo.console = p.boolean("console");
   sim.thermo.progress_seconds = p.real("progress");
   for (auto& c : sim.thermo.columns) {

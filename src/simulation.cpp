@@ -482,9 +482,16 @@ void Simulation::write_thermo(bool header) {
   for (auto& c : thermo.columns) vals.push_back(column(c));
   if (!thermo.file.empty()) {
     if (!thermo_csv_.is_open()) {
-      thermo_csv_.open(thermo.file, std::ios::out | std::ios::trunc);
+      bool has_content = false;
+      if (thermo.append) {
+        std::ifstream old(thermo.file);
+        has_content = old && old.peek() != std::ifstream::traits_type::eof();
+      }
+      thermo_csv_.open(thermo.file, thermo.append ? std::ios::out | std::ios::app
+                                                  : std::ios::out | std::ios::trunc);
       if (!thermo_csv_) throw InputError("cannot open thermo file '" + thermo.file + "'");
-      thermo_header_written_ = false;
+      // appending under an existing header keeps one header per file
+      thermo_header_written_ = has_content;
     }
     if (!thermo_header_written_) {
       for (size_t i = 0; i < thermo.columns.size(); ++i)

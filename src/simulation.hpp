@@ -36,6 +36,7 @@ struct ThermoOptions {
   long every = 0;
   std::vector<std::string> columns{"step", "time", "ke", "pe", "etotal"};
   std::string file;
+  bool append = false;  // continue an existing CSV (a restarted run)
   bool console = true;
   double progress_seconds = 5.0;
 };

@@ -55,4 +55,26 @@ local function start(seed)
   return y
 end
 assert(start(5) == start(5) and start(5) ~= start(6), "seeded random stream")
+-- thermo append: a restarted run continues the CSV under a single header
+local function thermo_run(append)
+  local s = slender.simulation { dimension = 2, quiet = true }
+  s:wire { name = "w", nodes = 5 }
+  s:bond("spring", { k = 10 })
+  s:integrator("verlet", { dt = 0.01 })
+  s:thermo { every = 5, file = "append_thermo.csv", columns = { "step", "ke" }, console = false,
+             append = append }
+  s:run(10)
+end
+thermo_run(false)
+thermo_run(true)
+local lines, headers = 0, 0
+for line in io.lines("append_thermo.csv") do
+  lines = lines + 1
+  if line:match("^step") then headers = headers + 1 end
+end
+assert(headers == 1 and lines == 1 + 2 * 3, "append: " .. headers .. " headers, " .. lines .. " lines")
+thermo_run(false)
+lines = 0
+for _ in io.lines("append_thermo.csv") do lines = lines + 1 end
+assert(lines == 4, "without append the CSV is replaced: " .. lines .. " lines")
 print("deck features: ok")

@@ -56,22 +56,38 @@ function M.run(p)
   sim:guard { max_strain = slender.var("max_strain", 0.5) }
   sim:compute("count", "count", {})
   sim:compute("shape", "morphology2d", { radius = r })
-  sim:thermo { every = 20000, file = name .. "_thermo.csv",
+  sim:compute("loops", "loops2d", { radius = r, diameter = d })
+  -- sandbox radii from 2 d to 0.3 r, centres on the wire within 0.7 r of the centre
+  sim:compute("frac", "fractal2d", { radius = r, diameter = d, rho_max = 0.3 })
+  local restart = slender.var("restart", "")
+  sim:thermo { every = slender.var("thermo_every", 20000), file = name .. "_thermo.csv",
+    append = restart ~= "",
     columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/node-edge.contacts",
-                "cavity.contacts", "energy.bend", "bend2d/hysteresis.dissipated", "shape.ratio",
-                "shape.winding", "shape.net_winding", "ke", "count.nodes" } }
+                "cavity.contacts", "loops.loops", "loops.holes", "frac.D", "energy.bend",
+                "bend2d/hysteresis.dissipated", "shape.ratio", "shape.winding",
+                "shape.net_winding", "ke", "count.nodes" } }
   if output then
-    sim:dump("traj", "h5md", { file = name .. ".h5", every = 50000,
+    -- a restarted run writes a new trajectory file rather than replacing the first
+    local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
+    sim:dump("traj", "h5md", { file = traj, every = 50000,
                                fields = { "position", "bend.plastic_curvature" } })
   end
+  -- long runs: -v checkpoint_every=N writes <name>_restart.h5 every N steps;
+  -- -v restart=<file> continues from it (thermo CSV appended)
+  local checkpoint_every = slender.var("checkpoint_every", 0)
+  if checkpoint_every > 0 then
+    sim:dump("restart", "checkpoint", { file = name .. "_restart.h5", every = checkpoint_every })
+  end
+  if restart ~= "" then sim:read_checkpoint(restart) end
 
   local t0 = slender.clock()
-  sim:run { steps = slender.var("max_steps", 1e9) }
+  sim:run { steps = slender.var("max_steps", 1e9) - sim:step() }
   local wall = slender.clock() - t0
   slender.result { case = "crumple2d/" .. name, f = f, s = s, yield = yield, mu = mu, seed = seed,
     phi = sim:value("feed.phi"), jammed = sim:value("feed.jammed"), force = sim:value("feed.force_avg"),
     steps = sim:step(), wall_s = wall, nodes = sim:nnodes(),
     contacts = sim:value("contact/node-edge.contacts"), ab_ratio = sim:value("shape.ratio"),
+    loops = sim:value("loops.loops"), fractal_dimension = sim:value("frac.D"),
     winding = sim:value("shape.winding"), ke_per_node = sim:value("ke") / sim:nnodes(),
     node_steps_per_s = sim:nnodes() * sim:step() / math.max(wall, 1e-9) }
   -- tests: -v check=true asserts that the run ended quasi-statically (a jam, not a burst)

@@ -1,0 +1,55 @@
+// A pixel image of 2D wires inside a circular cavity, shared by the loop count and
+// the fractal dimension (MODELS.md §2.7): the wire is drawn as a thick line through
+// its nodes, every wire pixel remembers which wire and arclength it belongs to, and
+// pixels outside the cavity are marked as wall.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "simulation.hpp"
+
+namespace slender {
+
+class WireRaster {
+ public:
+  enum : std::uint8_t { kEmpty = 0, kWire = 1, kWall = 2 };
+
+  // A square grid of pixel size `pixel` covering the disc of radius `radius`.
+  WireRaster(const Vec3& center, double radius, double pixel);
+
+  // Draws the polyline `pts` (consecutive points joined; `closed` joins the last to
+  // the first) with half-width `half_width`; wire pixels store the arclength of the
+  // nearest point of the nearest wire, offset by `s_offset` (so that separate
+  // wires never share an arclength interval).
+  void draw(const std::vector<Vec3>& pts, bool closed, double half_width, double s_offset);
+
+  // Draws every chain of the scene; returns for each chain its [start, end)
+  // arclength range in the image and whether it is closed.
+  struct ChainRange {
+    double s0, s1;
+    bool closed;
+  };
+  std::vector<ChainRange> draw_chains(const Simulation& sim,
+                                      const std::vector<const Chain*>& chains, double half_width);
+
+  int size() const { return n_; }
+  double pixel() const { return h_; }
+  std::uint8_t state(int i, int j) const { return state_[index(i, j)]; }
+  double arclength(int i, int j) const { return s_[index(i, j)]; }
+  // centre of pixel (i, j)
+  double px(int i) const { return x0_ + (i + 0.5) * h_; }
+  double py(int j) const { return y0_ + (j + 0.5) * h_; }
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * n_ + i; }
+  const std::vector<std::uint8_t>& states() const { return state_; }
+  const std::vector<double>& arclengths() const { return s_; }
+
+ private:
+  double h_, x0_, y0_;
+  int n_;
+  std::vector<std::uint8_t> state_;
+  std::vector<double> s_;
+  std::vector<float> d2_;  // squared distance to the nearest wire point drawn so far
+};
+
+}  // namespace slender

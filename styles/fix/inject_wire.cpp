@@ -28,7 +28,11 @@ class WireInjectionFix : public FixStyle {
     s.string("channels", "opposite: both ends are pushed; left / right: one end")
         .def(std::string("opposite"))
         .choices({"opposite", "left", "right"});
-    s.real("speed", "feed speed v_in (length per time unit) of each channel").required().positive();
+    s.real("speed",
+           "feed speed v_in (length per time unit) of each channel; sim:modify can set 0 "
+           "to hold the wire (the force protocol of MODELS.md §2.4)")
+        .required()
+        .nonnegative();
     s.real("diameter", "wire diameter d, for the packing density d L / (pi r^2)")
         .def(1.0)
         .positive();
@@ -88,7 +92,22 @@ class WireInjectionFix : public FixStyle {
   }
   // measured after every other force fix, before the clamp zeroes the channel forces
   unsigned stages() const override { return kSetup | kPostForce | kMeasure | kEndOfStep; }
-  void setup(Simulation& sim) override { mask_ = sim.nodes().find<int>("dof_mask"); }
+  void setup(Simulation& sim) override {
+    mask_ = sim.nodes().find<int>("dof_mask");
+    // a changed feed speed (sim:modify) applies to the nodes already in the channels
+    for (int i : driven_) sim.nodes().v[i] = Vec3(v_ * inward(sim.nodes().x[i]), 0, 0);
+  }
+  void modify(const RawParams& raw) override {
+    // only the feed speed may change between runs; the rest is the scene's geometry
+    for (auto& kv : raw)
+      if (kv.first != "speed")
+        throw InputError("fix style 'inject/wire': modify accepts only 'speed', not '" + kv.first +
+                         "'");
+    RawParams full = raw;
+    full["chain"] = chain_;
+    full["radius"] = r_;
+    v_ = spec(style_name()).validate(full).real("speed");
+  }
 
   double post_force(Simulation& sim) override {
     // the feeder balances the inward component of the internal forces

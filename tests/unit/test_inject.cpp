@@ -96,3 +96,25 @@ TEST(SphereWallFix, OpeningsLetTheWirePass) {
   EXPECT_EQ(sim.nodes().f[0].norm(), 0.0);
   EXPECT_GT(sim.nodes().f[1].norm(), 0.0);
 }
+
+TEST(WireInjectionFix, ModifiedSpeedHoldsAndResumesTheFeed) {
+  // the force protocol of MODELS.md §2.4: stop the feed, relax, then go on
+  auto sim = feed_scene("left", 0.5, 0.1);
+  sim->run(RunOptions{10000, 0, {}});
+  const double fed = sim->fix("feed").value("injected");
+  const double phi = sim->fix("feed").value("phi");
+  EXPECT_GT(fed, 0.0);
+  sim->fix("feed").modify(P({{"speed", 0.0}}));
+  const Vec3 end = sim->nodes().x[sim->topology().chains[0].nodes.front()];
+  sim->run(RunOptions{20000, 0, {}});
+  EXPECT_EQ(sim->fix("feed").value("injected"), fed);
+  EXPECT_EQ(sim->fix("feed").value("phi"), phi);
+  EXPECT_EQ((sim->nodes().x[sim->topology().chains[0].nodes.front()] - end).norm(), 0.0);
+  // held, the wire relaxes: nothing pushes it any more, the drag stops it
+  EXPECT_LT(sim->kinetic_energy(), 1e-6);
+  sim->fix("feed").modify(P({{"speed", 0.1}}));
+  sim->run(RunOptions{10000, 0, {}});
+  EXPECT_NEAR(sim->fix("feed").value("injected"), 2 * fed, 1.0 + 1e-9);
+  EXPECT_THROW(sim->fix("feed").modify(P({{"radius", 5.0}})), InputError);
+  EXPECT_THROW(sim->fix("feed").modify(P({{"speed", -1.0}})), InputError);
+}

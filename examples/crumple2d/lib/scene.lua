@@ -11,7 +11,8 @@
 -- the feed speed (§2.6 (a)).
 local M = {}
 
-function M.run(p)
+-- Builds the scene; returns the simulation and what the report needs.
+function M.build(p)
   local f = slender.var("f", p.f)
   local s = slender.var("s", p.s)
   local yield = slender.var("yield", p.yield)
@@ -58,14 +59,19 @@ function M.run(p)
   sim:compute("shape", "morphology2d", { radius = r })
   sim:compute("loops", "loops2d", { radius = r, diameter = d })
   -- sandbox radii from 2 d to 0.3 r, centres on the wire within 0.7 r of the centre
-  sim:compute("frac", "fractal2d", { radius = r, diameter = d, rho_max = 0.3 })
+  -- (small cavities, f < 7, have no room for a sandbox range and go without)
+  local with_fractal = 0.3 * r > 2 * d
+  if with_fractal then
+    sim:compute("frac", "fractal2d", { radius = r, diameter = d, rho_max = 0.3 })
+  end
   local restart = slender.var("restart", "")
+  local columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/node-edge.contacts",
+                    "cavity.contacts", "loops.loops", "loops.holes", "energy.bend",
+                    "bend2d/hysteresis.dissipated", "shape.ratio", "shape.winding",
+                    "shape.net_winding", "ke", "count.nodes" }
+  if with_fractal then table.insert(columns, 9, "frac.D") end
   sim:thermo { every = slender.var("thermo_every", 20000), file = name .. "_thermo.csv",
-    append = restart ~= "",
-    columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/node-edge.contacts",
-                "cavity.contacts", "loops.loops", "loops.holes", "frac.D", "energy.bend",
-                "bend2d/hysteresis.dissipated", "shape.ratio", "shape.winding",
-                "shape.net_winding", "ke", "count.nodes" } }
+    append = restart ~= "", columns = columns }
   if output then
     -- a restarted run writes a new trajectory file rather than replacing the first
     local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
@@ -79,17 +85,31 @@ function M.run(p)
     sim:dump("restart", "checkpoint", { file = name .. "_restart.h5", every = checkpoint_every })
   end
   if restart ~= "" then sim:read_checkpoint(restart) end
+  return sim, { name = name, f = f, s = s, yield = yield, mu = mu, seed = seed,
+                with_fractal = with_fractal }
+end
 
-  local t0 = slender.clock()
-  sim:run { steps = slender.var("max_steps", 1e9) - sim:step() }
-  local wall = slender.clock() - t0
-  slender.result { case = "crumple2d/" .. name, f = f, s = s, yield = yield, mu = mu, seed = seed,
+-- The RESULT line of a run that took `wall` seconds and `node_steps` node-steps.
+function M.report(sim, ctx, wall, node_steps)
+  slender.result { case = "crumple2d/" .. ctx.name, f = ctx.f, s = ctx.s, yield = ctx.yield,
+    mu = ctx.mu, seed = ctx.seed,
     phi = sim:value("feed.phi"), jammed = sim:value("feed.jammed"), force = sim:value("feed.force_avg"),
     steps = sim:step(), wall_s = wall, nodes = sim:nnodes(),
     contacts = sim:value("contact/node-edge.contacts"), ab_ratio = sim:value("shape.ratio"),
-    loops = sim:value("loops.loops"), fractal_dimension = sim:value("frac.D"),
+    loops = sim:value("loops.loops"), fractal_dimension = ctx.with_fractal and sim:value("frac.D") or 0,
     winding = sim:value("shape.winding"), ke_per_node = sim:value("ke") / sim:nnodes(),
-    node_steps_per_s = sim:nnodes() * sim:step() / math.max(wall, 1e-9) }
+    node_steps_per_s = node_steps / math.max(wall, 1e-9) }
+end
+
+-- Injects until the wire jams (or max_phi / max_steps) and reports.
+function M.run(p)
+  local sim, ctx = M.build(p)
+  local t0 = slender.clock()
+  -- node-steps summed as the wire grows (the node count changes every few hundred steps)
+  local node_steps, every = 0, 1000
+  sim:run { steps = slender.var("max_steps", 1e9) - sim:step(), every = every,
+            callback = function(s) node_steps = node_steps + every * s:nnodes() end }
+  M.report(sim, ctx, slender.clock() - t0, node_steps)
   -- tests: -v check=true asserts that the run ended quasi-statically (a jam, not a burst)
   if slender.var("check", false) then
     assert(sim:value("ke") / sim:nnodes() < 0.1, "the run ended with kinetic energy " .. sim:value("ke"))

@@ -1,0 +1,204 @@
+#!/usr/bin/env python3
+"""Statistics of 2D crumpling runs (MODELS.md §2.7, §2.8; thesis eq. 3.3):
+
+  loops     N_l ~ phi^gamma and contacts N_c ~ phi^mu, log-log fits over the thermo
+            CSVs of crumpling runs (columns feed.phi, loops.loops,
+            contact/node-edge.contacts)
+  force     F ~ (phi_c - phi)^beta from the relaxed force samples of
+            examples/crumple2d/force.lua (phi_c and beta fitted together)
+  spiral    bending energy E_b(phi) of the spiral scene against the analytic spiral
+            model of §2.8, both the thesis' printed form (3.10) and the corrected one,
+            the constant C matched at the first sample
+
+Each mode prints its fit with standard errors and writes a CSV and a PNG.
+
+  /usr/bin/python3 scripts/crumple_stats.py loops classic_thermo.csv [more.csv ...] --out docs/crumple2d/loops
+  /usr/bin/python3 scripts/crumple_stats.py force force_samples.csv --out docs/crumple2d/force
+  /usr/bin/python3 scripts/crumple_stats.py spiral spiral_thermo.csv --radius 10 --out docs/crumple2d/spiral
+"""
+import argparse
+import csv
+import math
+import os
+
+import numpy as np
+
+
+def read(paths):
+    rows = []
+    for p in paths:
+        with open(p) as fh:
+            for r in csv.DictReader(fh):
+                rows.append({k: float(v) for k, v in r.items() if v not in ("", None)})
+    return rows
+
+
+def linfit(x, y):
+    """Least squares y = a + b x; returns b, a, stderr(b), r^2."""
+    x, y = np.asarray(x), np.asarray(y)
+    A = np.vstack([np.ones_like(x), x]).T
+    coef, res, *_ = np.linalg.lstsq(A, y, rcond=None)
+    a, b = coef
+    resid = y - (a + b * x)
+    n = len(x)
+    s2 = resid @ resid / max(n - 2, 1)
+    sb = math.sqrt(s2 / max(((x - x.mean()) ** 2).sum(), 1e-300))
+    ss = ((y - y.mean()) ** 2).sum()
+    return b, a, sb, 1 - (resid @ resid) / ss if ss > 0 else 1.0
+
+
+def plot(path, series, xlabel, ylabel, logx=True, logy=True, title=""):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5, 4))
+    for s in series:
+        ax.plot(s["x"], s["y"], s.get("style", "o"), ms=3, label=s["label"])
+    if logx:
+        ax.set_xscale("log")
+    if logy:
+        ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def power_law(rows, xkey, ykey, lo, hi):
+    pts = [(r[xkey], r[ykey]) for r in rows
+           if r.get(ykey, 0) > 0 and lo <= r.get(xkey, 0) <= hi]
+    if len(pts) < 3:
+        return None
+    x, y = zip(*pts)
+    b, a, sb, r2 = linfit(np.log(x), np.log(y))
+    return {"exponent": b, "stderr": sb, "prefactor": math.exp(a), "r2": r2, "n": len(pts),
+            "x": np.array(x), "y": np.array(y)}
+
+
+def mode_loops(a):
+    rows = read(a.files)
+    out = {}
+    series = []
+    for key, name in (("loops.loops", "N_l (loops), gamma"), ("contact/node-edge.contacts", "N_c (contacts), mu")):
+        fit = power_law(rows, "feed.phi", key, a.phi_min, a.phi_max)
+        if fit is None:
+            print(f"{key}: fewer than 3 samples with a positive count")
+            continue
+        out[key] = fit
+        print(f"{name}: exponent {fit['exponent']:.3f} +- {fit['stderr']:.3f} "
+              f"(r^2 {fit['r2']:.3f}, {fit['n']} samples, phi in [{a.phi_min}, {a.phi_max}])")
+        xs = np.linspace(fit["x"].min(), fit["x"].max(), 50)
+        series += [{"x": fit["x"], "y": fit["y"], "label": key},
+                   {"x": xs, "y": fit["prefactor"] * xs ** fit["exponent"], "style": "-",
+                    "label": f"phi^{fit['exponent']:.2f}"}]
+    with open(a.out + ".csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["quantity", "exponent", "stderr", "prefactor", "r2", "samples", "phi_min", "phi_max", "files"])
+        for k, fit in out.items():
+            w.writerow([k, f"{fit['exponent']:.4f}", f"{fit['stderr']:.4f}", f"{fit['prefactor']:.4g}",
+                        f"{fit['r2']:.4f}", fit["n"], a.phi_min, a.phi_max, " ".join(a.files)])
+    if series:
+        plot(a.out + ".png", series, "packing density phi", "count", title="loops and contacts vs phi")
+    print("wrote", a.out + ".csv", a.out + ".png")
+
+
+def mode_force(a):
+    rows = [r for r in read(a.files) if r.get("force", 0) > 0 and r.get("relaxed", 1) > 0]
+    phi = np.array([r["phi"] for r in rows])
+    F = np.array([r["force"] for r in rows])
+    keep = phi >= a.phi_min
+    phi, F = phi[keep], F[keep]
+    if len(phi) < 4:
+        raise SystemExit("force: fewer than 4 relaxed samples")
+    # F = A (phi_c - phi)^beta: for each phi_c above the last sample a linear fit in
+    # log-log; phi_c is the one with the smallest residual
+    best = None
+    for pc in phi.max() + np.geomspace(1e-4, 0.5, 400):
+        b, c, sb, r2 = linfit(np.log(pc - phi), np.log(F))
+        resid = np.log(F) - (c + b * np.log(pc - phi))
+        sse = resid @ resid
+        if best is None or sse < best[0]:
+            best = (sse, pc, b, c, sb, r2)
+    sse, pc, b, c, sb, r2 = best
+    print(f"F ~ (phi_c - phi)^beta: phi_c = {pc:.4f}, beta = {b:.3f} +- {sb:.3f} (at fixed phi_c), "
+          f"r^2 {r2:.3f}, {len(phi)} relaxed samples with phi >= {a.phi_min}")
+    with open(a.out + ".csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["phi_c", "beta", "beta_stderr", "prefactor", "r2", "samples", "files"])
+        w.writerow([f"{pc:.5f}", f"{b:.4f}", f"{sb:.4f}", f"{math.exp(c):.4g}", f"{r2:.4f}", len(phi),
+                    " ".join(a.files)])
+    xs = np.linspace(phi.min(), phi.max(), 100)
+    plot(a.out + ".png", [{"x": phi, "y": F, "label": "relaxed injection force"},
+                          {"x": xs, "y": math.exp(c) * (pc - xs) ** b, "style": "-",
+                           "label": f"(phi_c - phi)^{b:.2f}, phi_c = {pc:.3f}"}],
+         "packing density phi", "injection force", logx=False, title="injection force vs phi")
+    print("wrote", a.out + ".csv", a.out + ".png")
+
+
+def spiral_model(phi, R, d, YI, printed):
+    """Bending energy of the spiral model (MODELS.md §2.8) up to the constant C."""
+    Rc = 0.5 * (d + np.sqrt(d * d + 4 * R * R * (1 - phi)))            # (3.4)
+    core = 4 * math.pi * YI / Rc                                        # E_c as printed
+    if printed:
+        phimax = math.pi * (R - Rc) / d                                 # (3.7)
+        Es = YI / d * (np.log(d * phimax + math.pi * Rc) - np.log(math.pi * Rc))  # (3.10)
+    else:
+        Es = math.pi * YI / (2 * d) * np.log(R / Rc)                    # corrected
+    return core + 2 * Es
+
+
+def mode_spiral(a):
+    rows = [r for r in read(a.files) if "energy.bend" in r]
+    phi = np.array([r["feed.phi"] for r in rows])
+    E = np.array([r["energy.bend"] for r in rows])
+    keep = phi >= a.phi_min
+    phi, E = phi[keep], E[keep]
+    if len(phi) < 3:
+        raise SystemExit("spiral: fewer than 3 samples")
+    out = []
+    series = [{"x": phi, "y": E, "label": "simulation E_b"}]
+    for printed in (False, True):
+        m = spiral_model(phi, a.radius, a.diameter, a.YI, printed)
+        C = E[0] - m[0]                     # matched at the first (starting) sample
+        model = m + C
+        rel = np.abs(E - model) / np.maximum(np.abs(E), 1e-300)
+        name = "printed (3.10)" if printed else "corrected"
+        hi = phi <= a.report_max
+        print(f"spiral model {name}: C = {C:.4g}; |E - model| / E: median {np.median(rel[hi]):.3f}, "
+              f"max {rel[hi].max():.3f} for phi <= {a.report_max}; at the last sample "
+              f"(phi = {phi[-1]:.3f}) {rel[-1]:.3f}")
+        out.append((name, C, np.median(rel[hi]), rel[hi].max(), rel[-1]))
+        series.append({"x": phi, "y": model, "style": "-", "label": f"model, {name}"})
+    with open(a.out + ".csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["model", "C", "median_rel_dev", "max_rel_dev", "last_rel_dev", "phi_report_max",
+                    "last_phi", "R", "d", "YI", "files"])
+        for name, C, med, mx, last in out:
+            w.writerow([name, f"{C:.5g}", f"{med:.4f}", f"{mx:.4f}", f"{last:.4f}", a.report_max,
+                        f"{phi[-1]:.4f}", a.radius, a.diameter, a.YI, " ".join(a.files)])
+    plot(a.out + ".png", series, "packing density phi", "bending energy", logx=False, logy=False,
+         title=f"spiral phase, R = {a.radius:g} d")
+    print("wrote", a.out + ".csv", a.out + ".png")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("mode", choices=["loops", "force", "spiral"])
+    ap.add_argument("files", nargs="+")
+    ap.add_argument("--out", required=True, help="output stem (CSV and PNG)")
+    ap.add_argument("--phi-min", type=float, default=0.0)
+    ap.add_argument("--phi-max", type=float, default=1.0)
+    ap.add_argument("--radius", type=float, default=100.0, help="cavity radius R (spiral)")
+    ap.add_argument("--diameter", type=float, default=1.0)
+    ap.add_argument("--YI", type=float, default=60.0, help="bending stiffness YI = k2 l0 (spiral)")
+    ap.add_argument("--report-max", type=float, default=0.9, help="spiral: deviations reported up to this phi")
+    a = ap.parse_args()
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
+    {"loops": mode_loops, "force": mode_force, "spiral": mode_spiral}[a.mode](a)
+
+
+if __name__ == "__main__":
+    main()

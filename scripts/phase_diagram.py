@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+"""Morphological phase diagram of the 2D crumpled wire (W2-4, MODELS.md §7.2):
+yield curvature kappa_theta x static friction mu_st, several seeds per point, each
+run to jamming and classified (MODELS.md §2.7):
+
+  spiral   winding of a half of the wire >= 2 turns and at most 2 loops
+  classic  A/B < 0.5 (squared curvature concentrated near the wall)
+  plastic  otherwise
+
+Runs unattended and resumes: every finished run is appended to <out>.csv at once,
+and a restart skips the (yield, mu, seed) already there (failed runs are retried
+with --retry-failed). Writes <out>.png (majority class per point, with its share)
+and <out>_phi.png (mean jamming density).
+
+  /usr/bin/python3 scripts/phase_diagram.py                      # the thesis' sweep, f = 50
+  /usr/bin/python3 scripts/phase_diagram.py --f 10 --yields 0 0.02 0.04 0.06 \\
+      --mus 0 0.2 0.4 0.6 --seeds 1 --out docs/crumple2d/phase_diagram_f10
+"""
+import argparse
+import concurrent.futures as cf
+import csv
+import os
+import shutil
+import subprocess
+import tempfile
+import threading
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+FIELDS = ["f", "s", "yield", "mu", "seed", "class", "phi", "jammed", "loops", "winding", "ab_ratio",
+          "contacts", "steps", "wall_s", "status", "error"]
+
+
+def classify(row, min_winding=2.0, max_loops=2):
+    if float(row["winding"]) >= min_winding and float(row["loops"]) <= max_loops:
+        return "spiral"
+    return "classic" if float(row["ab_ratio"]) < 0.5 else "plastic"
+
+
+def run_one(a, y, mu, seed):
+    args = [a.slender, "-q", os.path.join(a.examples, "crumple2d", "classic.lua"),
+            "-v", f"f={a.f}", "-v", f"s={a.s}", "-v", f"yield={y}", "-v", f"mu={mu}",
+            "-v", f"seed={seed}", "-v", "output=false", "-v", f"max_steps={a.max_steps}"]
+    with tempfile.TemporaryDirectory() as tmp:
+        try:
+            p = subprocess.run(args, cwd=tmp, capture_output=True, text=True, timeout=a.timeout)
+            rc, out, err = p.returncode, p.stdout, p.stderr
+        except subprocess.TimeoutExpired:
+            rc, out, err = -1, "", f"timeout after {a.timeout} s"
+    row = {"f": a.f, "s": a.s, "yield": y, "mu": mu, "seed": seed}
+    res = {}
+    for line in out.splitlines():
+        if line.startswith("RESULT"):
+            res = dict(kv.partition("=")[::2] for kv in line.split()[1:])
+    if rc == 0 and res:
+        for k in ("phi", "jammed", "loops", "winding", "ab_ratio", "contacts", "steps", "wall_s"):
+            row[k] = res.get(k, "")
+        row["class"] = classify(row)
+        row["status"] = "ok"
+    else:
+        row["status"] = "failed"
+        row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+    return row
+
+
+def key(r):
+    return (round(float(r["yield"]), 6), round(float(r["mu"]), 6), int(r["seed"]))
+
+
+def load(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as fh:
+        return list(csv.DictReader(fh))
+
+
+def draw(rows, out, yields, mus, f):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    classes = ["spiral", "plastic", "classic"]
+    colours = {"spiral": "#4c72b0", "plastic": "#dd8452", "classic": "#55a868"}
+    ok = [r for r in rows if r["status"] == "ok"]
+    fig, ax = plt.subplots(figsize=(6, 5))
+    grid_phi = np.full((len(mus), len(yields)), np.nan)
+    for i, mu in enumerate(mus):
+        for j, y in enumerate(yields):
+            pts = [r for r in ok if abs(float(r["yield"]) - y) < 1e-9 and abs(float(r["mu"]) - mu) < 1e-9]
+            if not pts:
+                continue
+            counts = {c: sum(r["class"] == c for r in pts) for c in classes}
+            top = max(classes, key=lambda c: counts[c])
+            share = counts[top] / len(pts)
+            ax.scatter(y, mu, s=300 * share + 40, c=colours[top], marker="s", edgecolors="k", linewidths=0.3)
+            ax.annotate(f"{counts[top]}/{len(pts)}", (y, mu), fontsize=6, ha="center", va="center")
+            grid_phi[i, j] = np.mean([float(r["phi"]) for r in pts])
+    for c in classes:
+        ax.scatter([], [], c=colours[c], marker="s", label=c)
+    ax.set_xlabel("yield curvature kappa_theta")
+    ax.set_ylabel("static friction mu_st")
+    ax.set_title(f"2D crumpling phase diagram, f = {f:g} (majority class, count/seeds)", fontsize=9)
+    ax.legend(fontsize=8, loc="upper right")
+    fig.tight_layout()
+    fig.savefig(out + ".png", dpi=120)
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(6, 5))
+    im = ax.imshow(grid_phi, origin="lower", aspect="auto",
+                   extent=[yields[0], yields[-1], mus[0], mus[-1]] if len(yields) > 1 and len(mus) > 1 else None)
+    fig.colorbar(im, label="mean jamming density phi")
+    ax.set_xlabel("yield curvature kappa_theta")
+    ax.set_ylabel("static friction mu_st")
+    fig.tight_layout()
+    fig.savefig(out + "_phi.png", dpi=120)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
+    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
+    ap.add_argument("--f", type=float, default=50)
+    ap.add_argument("--s", type=float, default=0.05, help="feed speed (the thesis' s, reading (a))")
+    ap.add_argument("--yields", type=float, nargs="+", default=[round(0.005 * i, 3) for i in range(13)])
+    ap.add_argument("--mus", type=float, nargs="+", default=[round(0.05 * i, 2) for i in range(13)])
+    ap.add_argument("--seeds", type=int, nargs="+", default=list(range(1, 10)))
+    ap.add_argument("--jobs", type=int, default=max(1, (os.cpu_count() or 2)))
+    ap.add_argument("--max-steps", type=float, default=1e9)
+    ap.add_argument("--timeout", type=float, default=None, help="seconds per run")
+    ap.add_argument("--retry-failed", action="store_true")
+    ap.add_argument("--snapshot", action="store_true",
+                    help="copy the binary's decks to a temporary folder first, so edits during a "
+                         "long sweep cannot change it")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "crumple2d", "phase_diagram_f50"))
+    a = ap.parse_args()
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
+    path = a.out + ".csv"
+    rows = load(path)
+    if a.retry_failed:
+        rows = [r for r in rows if r["status"] == "ok"]
+        with open(path, "w", newline="") as fh:
+            w = csv.DictWriter(fh, FIELDS)
+            w.writeheader()
+            w.writerows(rows)
+    done = {key(r) for r in rows}
+    todo = [(y, mu, s) for y in a.yields for mu in a.mus for s in a.seeds
+            if (round(y, 6), round(mu, 6), s) not in done]
+    print(f"{len(done)} runs done, {len(todo)} to go -> {path}", flush=True)
+    if a.snapshot:
+        snap = tempfile.mkdtemp(prefix="slender_sweep_")
+        shutil.copytree(a.examples, os.path.join(snap, "examples"))
+        a.examples = os.path.join(snap, "examples")
+    lock = threading.Lock()
+    if not os.path.exists(path):
+        with open(path, "w", newline="") as fh:
+            csv.DictWriter(fh, FIELDS).writeheader()
+
+    def job(t):
+        row = run_one(a, *t)
+        with lock:  # append at once: an interrupted sweep loses at most the runs in flight
+            with open(path, "a", newline="") as fh:
+                csv.DictWriter(fh, FIELDS).writerow(row)
+            print(f"yield {t[0]:g} mu {t[1]:g} seed {t[2]}: {row['status']} {row.get('class', '')} "
+                  f"phi {row.get('phi', '')}", flush=True)
+        return row
+
+    with cf.ThreadPoolExecutor(a.jobs) as ex:
+        list(ex.map(job, todo))
+    rows = load(path)
+    draw(rows, a.out, sorted(set(a.yields)), sorted(set(a.mus)), a.f)
+    ok = [r for r in rows if r["status"] == "ok"]
+    print(f"{len(ok)} ok, {len(rows) - len(ok)} failed; wrote {a.out}.png {a.out}_phi.png")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Checks the fits of scripts/crumple_stats.py on synthetic data with known answers,
+and the morphology classes of scripts/phase_diagram.py."""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import crumple_stats  # noqa: E402
+import phase_diagram  # noqa: E402
+
+
+def write(path, header, rows):
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(header)
+        w.writerows(rows)
+
+
+def stats(*args):
+    out = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "crumple_stats.py"), *args],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+def read_csv(path):
+    with open(path) as fh:
+        return list(csv.DictReader(fh))
+
+
+def main():
+    rng = np.random.default_rng(3)
+    with tempfile.TemporaryDirectory() as tmp:
+        # N_l = 4 phi^1.5 and N_c = 300 phi^2.8 with 2 % noise
+        phi = np.linspace(0.1, 0.6, 40)
+        noise = lambda: np.exp(0.02 * rng.standard_normal(phi.size))
+        write(os.path.join(tmp, "t.csv"), ["feed.phi", "loops.loops", "contact/node-edge.contacts"],
+              zip(phi, 4 * phi ** 1.5 * noise(), 300 * phi ** 2.8 * noise()))
+        stats("loops", os.path.join(tmp, "t.csv"), "--out", os.path.join(tmp, "loops"))
+        fits = {r["quantity"]: float(r["exponent"]) for r in read_csv(os.path.join(tmp, "loops.csv"))}
+        assert abs(fits["loops.loops"] - 1.5) < 0.05, fits
+        assert abs(fits["contact/node-edge.contacts"] - 2.8) < 0.05, fits
+
+        # F = 5 (0.62 - phi)^-1.2, one sample not at rest (left out of the fit)
+        phi = np.linspace(0.1, 0.6, 30)
+        F = 5 * (0.62 - phi) ** -1.2 * np.exp(0.01 * rng.standard_normal(phi.size))
+        rows = [(p, f, 1) for p, f in zip(phi, F)] + [(0.3, 1e4, 0)]
+        write(os.path.join(tmp, "f.csv"), ["phi", "force", "relaxed"], rows)
+        stats("force", os.path.join(tmp, "f.csv"), "--out", os.path.join(tmp, "force"))
+        r = read_csv(os.path.join(tmp, "force.csv"))[0]
+        assert abs(float(r["phi_c"]) - 0.62) < 0.01, r
+        assert abs(float(r["beta"]) + 1.2) < 0.1, r
+
+        # a spiral whose energy is the corrected model plus a constant: no deviation
+        # from the corrected model, a clear one from the printed form
+        phi = np.linspace(0.05, 0.8, 30)
+        E = crumple_stats.spiral_model(phi, 50.0, 1.0, 60.0, printed=False) + 123.0
+        write(os.path.join(tmp, "s.csv"), ["feed.phi", "energy.bend"], zip(phi, E))
+        stats("spiral", os.path.join(tmp, "s.csv"), "--radius", "50", "--out", os.path.join(tmp, "spiral"))
+        dev = {r["model"]: float(r["max_rel_dev"]) for r in read_csv(os.path.join(tmp, "spiral.csv"))}
+        assert dev["corrected"] < 1e-6, dev
+        assert dev["printed (3.10)"] > 0.01, dev
+
+    # morphology classes
+    c = phase_diagram.classify
+    assert c({"winding": 2.5, "loops": 1, "ab_ratio": 3.0}) == "spiral"
+    assert c({"winding": 2.5, "loops": 5, "ab_ratio": 0.3}) == "classic"
+    assert c({"winding": 0.3, "loops": 0, "ab_ratio": 0.3}) == "classic"
+    assert c({"winding": 0.3, "loops": 4, "ab_ratio": 0.9}) == "plastic"
+    # the spiral model's core radius: R_c(0) ~ R, R_c(1) = d (MODELS.md §2.8)
+    rc = lambda p: 0.5 * (1 + np.sqrt(1 + 4 * 50.0 ** 2 * (1 - p)))
+    assert abs(rc(1.0) - 1.0) < 1e-12 and abs(rc(0.0) - 50.0) < 1
+    print("crumple scripts: ok")
+
+
+if __name__ == "__main__":
+    main()

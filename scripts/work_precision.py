@@ -186,12 +186,14 @@ def variant_key(row):
         a = to_float(row.get("alpha"))
         label = "%g" % a if a is not None else str(row.get("alpha"))
         kind = "small load" if a is not None and a < 1 else "large load"
-        return ((0, a if a is not None else math.inf, label),
-                "cantilever2d, alpha = %s (%s)" % (label, kind))
+        model = row.get("model") or "bend2d"
+        return ((0, a if a is not None else math.inf, label, model),
+                "cantilever, alpha = %s (%s), %s" % (label, kind, model))
     if case.startswith("buckling"):
         bc = row.get("bc", "")
         order = DEFAULT_BCS.index(bc) if bc in DEFAULT_BCS else len(DEFAULT_BCS)
-        return ((1, order, bc), "buckling2d, %s" % bc)
+        model = row.get("model") or "bend2d"
+        return ((1, order, bc, model), "buckling, %s, %s" % (bc, model))
     return ((2, 0, case), case or "unknown case")
 
 
@@ -397,27 +399,32 @@ def build_plan(args, decks):
     """List of (deck, overrides, base_row) for the main ladder."""
     plan = []
     if "cantilever" in decks:
-        for alpha in args.alphas:
-            for integ in args.integrators:
-                for nodes in args.nodes:
-                    base = {"case": "cantilever2d", "alpha": repr(alpha), "nodes": str(nodes),
-                            "integrator": integ, "dt": "auto", "dt_mode": "auto"}
-                    ov = [("nodes", nodes), ("integrator", integ), ("alpha", repr(alpha))]
-                    plan.append((decks["cantilever"], ov, base))
+        for model in args.models:
+            for alpha in args.alphas:
+                for integ in args.integrators:
+                    for nodes in args.nodes:
+                        base = {"case": "cantilever2d", "model": model, "alpha": repr(alpha),
+                                "nodes": str(nodes), "integrator": integ, "dt": "auto",
+                                "dt_mode": "auto"}
+                        ov = [("nodes", nodes), ("integrator", integ), ("alpha", repr(alpha)),
+                              ("model", model)]
+                        plan.append((decks["cantilever"], ov, base))
     if "buckling" in decks:
-        for bc in args.bcs:
-            for integ in args.integrators:
-                for nodes in args.nodes:
-                    base = {"case": "buckling2d", "bc": bc, "nodes": str(nodes),
-                            "integrator": integ}
-                    ov = [("nodes", nodes), ("integrator", integ), ("bc", bc)]
-                    plan.append((decks["buckling"], ov, base))
+        for model in args.models:
+            for bc in args.bcs:
+                for integ in args.integrators:
+                    for nodes in args.nodes:
+                        base = {"case": "buckling2d", "model": model, "bc": bc,
+                                "nodes": str(nodes), "integrator": integ}
+                        ov = [("nodes", nodes), ("integrator", integ), ("bc", bc),
+                              ("model", model)]
+                        plan.append((decks["buckling"], ov, base))
     return plan
 
 
 def describe(base):
     parts = [base.get("case", "")]
-    for k in ("alpha", "bc", "nodes", "integrator", "dt_mode"):
+    for k in ("model", "alpha", "bc", "nodes", "integrator", "dt_mode"):
         if base.get(k):
             parts.append("%s=%s" % (k, base[k]))
     return " ".join(parts)
@@ -444,6 +451,9 @@ def main(argv=None):
                         % (DEFAULT_INTEGRATORS, FAST_INTEGRATORS))
     p.add_argument("--alphas", type=float, nargs="+", default=DEFAULT_ALPHAS,
                    help="cantilever load parameters alpha = P L^2/EI (default %(default)s)")
+    p.add_argument("--models", nargs="+", default=["bend2d", "rod3d"],
+                   help="beam models: bend2d (2D bending springs), rod3d (3D discrete elastic "
+                        "rod, bond rod/straight) (default %(default)s)")
     p.add_argument("--bcs", nargs="+", default=DEFAULT_BCS,
                    help="buckling boundary conditions (default %(default)s)")
     p.add_argument("--dt-ladder", action="store_true",
@@ -551,6 +561,7 @@ def main(argv=None):
         for alpha in args.alphas:
             for integ in args.integrators:
                 auto = [r for r in rows if r.get("case") == "cantilever2d"
+                        and (r.get("model") or "bend2d") == "bend2d"
                         and same_value(r.get("alpha"), alpha) and r.get("integrator") == integ
                         and r.get("nodes") == finest and r.get("dt_mode") == "auto"
                         and r.get("status") == "ok"]
@@ -561,8 +572,9 @@ def main(argv=None):
                     continue
                 for f in args.dt_factors:
                     dt = dt0 / f
-                    base = {"case": "cantilever2d", "alpha": repr(alpha), "nodes": finest,
-                            "integrator": integ, "dt": repr(dt), "dt_mode": "auto/%g" % f}
+                    base = {"case": "cantilever2d", "model": "bend2d", "alpha": repr(alpha),
+                            "nodes": finest, "integrator": integ, "dt": repr(dt),
+                            "dt_mode": "auto/%g" % f}
                     ov = [("nodes", finest), ("integrator", integ), ("alpha", repr(alpha)),
                           ("dt", repr(dt))]
                     do_run(decks["cantilever"], ov, base, "[dt] %s" % describe(base))

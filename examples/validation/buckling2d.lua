@@ -4,6 +4,7 @@
 -- shortening of the extensible column (lib/elastica.lua; the plain Euler load is
 -- reported as `euler`).
 -- Expected run time: a few seconds with the defaults (21 nodes, gear5).
+-- -v model=rod3d runs the columns as 3D discrete elastic rods (bond rod/straight).
 --
 -- Each trial starts from the first mode shape with amplitude a = 1e-3 L and a
 -- straight rest shape. Below the critical load the perturbation decays, above it
@@ -16,6 +17,10 @@ local N = slender.var("nodes", 21)
 local integ = slender.var("integrator", "gear5")
 local bc = slender.var("bc", "pinned")  -- pinned (pinned-pinned) | clamped (clamped-free)
 local iterations = slender.var("iterations", 16)  -- bracket (1.5 - 0.5) / 2^16 = 1.5e-5
+local model = slender.var("model", "bend2d")     -- bend2d | rod3d (3D rod, rod/straight)
+assert(model == "bend2d" or model == "rod3d", "model must be bend2d or rod3d")
+local dim = model == "rod3d" and 3 or 2
+local function vec(x, y) return dim == 3 and { x, y, 0 } or { x, y } end
 
 local L, EI, EA = 1.0, 1.0, 1e5
 -- pinned ends carry no hinge, so nodes sit at the ends; a clamp is staggered by
@@ -29,29 +34,33 @@ local a = 1e-3 * L
 local function buckles(P)
   local pts = {}
   local s0 = 0.0
-  if bc == "clamped" then pts[1] = { -h / 2, 0 }; s0 = h / 2 end
+  if bc == "clamped" then pts[1] = vec(-h / 2, 0); s0 = h / 2 end
   for i = 0, N - 1 do
     local s = s0 + i * h
     local shape = bc == "pinned" and math.sin(math.pi * s / L) or (1 - math.cos(math.pi * s / (2 * L)))
     -- the clamped pair stays exactly on the axis: a tilted clamp is an imperfection
     if bc == "clamped" and i == 0 then shape = 0 end
-    pts[#pts + 1] = { s, a * shape }
+    pts[#pts + 1] = vec(s, a * shape)
   end
-  local sim = slender.simulation { dimension = 2, quiet = true }
+  local sim = slender.simulation { dimension = dim, quiet = true }
   sim:wire { name = "col", points = pts, mass = h }
   sim:bond("spring", { k = EA / h })
-  sim:bond("bend2d", { k = EI / h })
+  if model == "rod3d" then
+    sim:bond("rod/straight", { YI = EI })  -- MODELS.md §3
+  else
+    sim:bond("bend2d", { k = EI / h })
+  end
   if bc == "pinned" then
     sim:group("pin", { chain = "col", nodes = { 1 } })
     sim:group("roller", { chain = "col", nodes = { -1 } })
     sim:fix("pin", "clamp", { group = "pin" })
-    sim:fix("roller", "clamp", { group = "roller", components = "y" })
+    sim:fix("roller", "clamp", { group = "roller", components = dim == 3 and "yz" or "y" })
   else
     sim:group("base", { chain = "col", nodes = { 1, 2 } })
     sim:fix("clamp", "clamp", { group = "base" })
   end
   sim:group("end", { chain = "col", nodes = { -1 } })
-  sim:fix("load", "force/constant", { group = "end", force = { -P, 0 } })
+  sim:fix("load", "force/constant", { group = "end", force = vec(-P, 0) })
   local probe = bc == "pinned" and sim:chain_node("col", (N + 1) // 2) or sim:chain_node("col", -1)
   if integ == "fire" then
     ref.integrator(sim, integ, "auto")
@@ -85,7 +94,7 @@ for _ = 1, iterations do
 end
 local wall = slender.clock() - t0
 local pc = 0.5 * (lo + hi)
-slender.result { case = "buckling2d", bc = bc, nodes = N, integrator = integ, pc = pc, ref = Pref, euler = Peuler,
+slender.result { case = "buckling2d", model = model, bc = bc, nodes = N, integrator = integ, pc = pc, ref = Pref, euler = Peuler,
   rel_error = math.abs(pc - Pref) / Pref, bracket = (hi - lo) / Pref, runs = iterations + 2,
   steps = steps, wall_s = wall }
 -- tests pass -v check=TOL to turn the comparison into an assertion

@@ -1,5 +1,7 @@
 -- Purpose: clamped 2D wire under a tip load; tip position against the elastica
--- (any load) and Euler-Bernoulli P L^3 / (3 EI) (small loads).
+-- (any load) and Euler-Bernoulli P L^3 / (3 EI) (small loads). -v model=rod3d runs
+-- the same beam as a 3D discrete elastic rod (bond rod/straight), which must
+-- converge to the same reference.
 -- Expected run time: about 1 s with the defaults (41 nodes, gear5).
 --
 -- Units: EI = 1, L = 1, mass per length 1. EA = 1e5 EI / L^2 (a wire of diameter
@@ -13,6 +15,10 @@ local integ = slender.var("integrator", "gear5") -- verlet | gear4 | gear5 | gea
 local alpha = slender.var("alpha", 0.01)        -- load P L^2 / EI
 local dt = slender.var("dt", "auto")
 local write_output = slender.var("output", false)
+local model = slender.var("model", "bend2d")     -- bend2d | rod3d (3D rod, rod/straight)
+assert(model == "bend2d" or model == "rod3d", "model must be bend2d or rod3d")
+local dim = model == "rod3d" and 3 or 2
+local function vec(x, y) return dim == 3 and { x, y, 0 } or { x, y } end
 
 local L, EI, EA = 1.0, 1.0, 1e5
 -- Staggered clamp: the hinge at the clamped node stands for the wire over half a
@@ -21,15 +27,19 @@ local L, EI, EA = 1.0, 1.0, 1e5
 local h = L / (N - 0.5)
 local P = alpha * EI / L ^ 2
 
-local sim = slender.simulation { dimension = 2, seed = 1 }
+local sim = slender.simulation { dimension = dim, seed = 1 }
 -- N + 1 nodes: the clamped pair at -h/2 and h/2, then the free nodes up to the tip at L
-sim:wire { name = "beam", nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
+sim:wire { name = "beam", nodes = N + 1, spacing = h, start = vec(-h / 2, 0), direction = vec(1, 0), mass = h }
 sim:bond("spring", { k = EA / h })  -- k1 = EA / l0 (MODELS.md §1)
-sim:bond("bend2d", { k = EI / h })  -- k2 = EI / l0
+if model == "rod3d" then
+  sim:bond("rod/straight", { YI = EI })  -- MODELS.md §3
+else
+  sim:bond("bend2d", { k = EI / h })  -- k2 = EI / l0
+end
 sim:group("base", { chain = "beam", nodes = { 1, 2 } })
 sim:group("tip", { chain = "beam", nodes = { -1 } })
 sim:fix("clamp", "clamp", { group = "base" })
-sim:fix("load", "force/constant", { group = "tip", force = { 0, -P } })
+sim:fix("load", "force/constant", { group = "tip", force = vec(0, -P) })
 -- near-critical damping of the first bending mode (omega_1 = 3.516 sqrt(EI / (rho A L^4)))
 if integ ~= "fire" then sim:fix("drag", "damping/viscous", { gamma = 2 * 3.516 * h }) end
 ref.integrator(sim, integ, dt)
@@ -49,7 +59,7 @@ local x, y = sim:position(-1)
 local xr, yr = ref.cantilever_tip(P, EI, EA, L)
 local eb = -P * L ^ 3 / (3 * EI)
 local rel = math.sqrt((x - xr) ^ 2 + (y - yr) ^ 2) / math.abs(yr)
-slender.result { case = "cantilever2d", alpha = alpha, nodes = N, integrator = integ, dt = sim:dt(),
+slender.result { case = "cantilever2d", model = model, alpha = alpha, nodes = N, integrator = integ, dt = sim:dt(),
   steps = steps, wall_s = wall, tip_x = x, tip_y = y, ref_x = xr, ref_y = yr, rel_error = rel,
   eb_y = eb, eb_error = math.abs(y - eb) / math.abs(eb),
   node_steps_per_s = (N + 1) * steps / math.max(wall, 1e-9) }

@@ -63,9 +63,10 @@ def main():
         E = crumple_stats.spiral_model(phi, 50.0, 1.0, 60.0, printed=False) + 123.0
         write(os.path.join(tmp, "s.csv"), ["feed.phi", "energy.bend"], zip(phi, E))
         stats("spiral", os.path.join(tmp, "s.csv"), "--radius", "50", "--out", os.path.join(tmp, "spiral"))
-        dev = {r["model"]: float(r["max_rel_dev"]) for r in read_csv(os.path.join(tmp, "spiral.csv"))}
-        assert dev["corrected"] < 1e-6, dev
-        assert dev["printed (3.10)"] > 0.01, dev
+        dev = {(r["model"], r["C_from"]): float(r["max_rel_dev"])
+               for r in read_csv(os.path.join(tmp, "spiral.csv"))}
+        assert dev[("corrected", "start")] < 1e-6 and dev[("corrected", "lsq")] < 1e-6, dev
+        assert dev[("printed (3.10)", "start")] > 0.01, dev
 
     # morphology classes
     c = phase_diagram.classify

@@ -1,0 +1,85 @@
+// Bending of a naturally straight, isotropic 3D rod without directors (a discrete
+// elastic rod after Bergou et al., extensible; MODELS.md §3): at each interior node
+// the curvature binormal kb = 2 e0 x e1 / (|e0||e1| + e0.e1) (§3.1), bending energy
+// E = YI |kb|^2 / l over the rest vertex length l = |e0_rest| + |e1_rest| (§3.2), and
+// forces from the exact gradients of kb (§3.3). Positions only: twist is taken as
+// relaxed, so a scene with this style allocates no orientation data. Stretching
+// is the `spring` style (k = YA / l0, MODELS.md (4.7)).
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "chain_select.hpp"
+#include "registry.hpp"
+
+namespace slender {
+
+namespace {
+// [e]: the matrix of v -> e x v
+Eigen::Matrix3d skew(const Vec3& e) {
+  Eigen::Matrix3d m;
+  m << 0, -e.z(), e.y(), e.z(), 0, -e.x(), -e.y(), e.x(), 0;
+  return m;
+}
+}  // namespace
+
+class StraightRodBond : public ChainBondStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("bond", name,
+                "bending of a straight isotropic rod without directors: discrete elastic rod "
+                "curvature binormal, E = YI |kb|^2 / l (MODELS.md §3)");
+    s.real("YI", "bending stiffness Y I (moment times length)").required().positive();
+    declare_chains(s);
+    return s;
+  }
+  StraightRodBond(Simulation& sim, const ParamValues& p)
+      : ChainBondStyle(sim, p), yi_(p.real("YI")) {}
+  const char* energy_category() const override { return "bend"; }
+
+  double compute(Simulation& sim) override {
+    auto& x = sim.nodes().x;
+    auto& f = sim.nodes().f;
+    double energy = 0.0;
+    for (auto* c : chains(sim)) {
+      const int nh = c->n_hinges();
+      const int ne = c->n_edges();
+      for (int h = 0; h < nh; ++h) {
+        int a, m, b;
+        c->hinge(h, a, m, b);
+        // rest lengths of the two edges at this hinge (§3.1: domain lengths at rest)
+        const int e0i = c->closed ? (h - 1 + ne) % ne : h;
+        const int e1i = c->closed ? h : h + 1;
+        const double l = c->rest_length[e0i] + c->rest_length[e1i];
+        const Vec3 e0 = x[m] - x[a], e1 = x[b] - x[m];
+        const double n0 = e0.norm(), n1 = e1.norm();
+        const double D = n0 * n1 + e0.dot(e1);
+        if (!(D > 1e-12 * n0 * n1)) continue;  // a fully folded hinge has no binormal
+        const Vec3 kb = 2.0 * e0.cross(e1) / D;
+        energy += yi_ * kb.squaredNorm() / l;
+        // exact gradients (§3.3); F_k = -(2 YI / l) (grad_k kb)^T kb
+        const Vec3 t0 = e0 / n0, t1 = e1 / n1;
+        const Eigen::Matrix3d ga = (2.0 * skew(e1) + kb * (e1 + n1 * t0).transpose()) / D;
+        const Eigen::Matrix3d gb = (2.0 * skew(e0) - kb * (e0 + n0 * t1).transpose()) / D;
+        const double s = 2.0 * yi_ / l;
+        const Vec3 fa = -s * (ga.transpose() * kb);
+        const Vec3 fb = -s * (gb.transpose() * kb);
+        f[a] += fa;
+        f[b] += fb;
+        f[m] -= fa + fb;
+      }
+    }
+    return energy;
+  }
+  // zig-zag mode: a small turning angle phi stores YI phi^2 / (2 l0), i.e. k2 = YI / l0
+  double max_frequency(const Simulation& sim) const override {
+    auto ch = select_chains(sim, names_);
+    return ch.empty() ? 0.0 : bend_frequency(sim, yi_ / min_rest(ch));
+  }
+
+ private:
+  double yi_;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::BondStyle, "rod/straight", slender::StraightRodBond)

@@ -28,10 +28,14 @@ struct ContactLaw {
   double slip_velocity = 0.0;    // v_th: a slipping contact slower than this sticks again
 
   // Declares the law's parameters on a style's spec (shared by pair and wall).
-  static void declare(ParamSpec& s) {
-    s.real("stiffness", "normal stiffness k_c: F_N = k_c overlap^p").required().positive();
-    s.real("exponent", "normal force law exponent p (2: quadratic, MODELS.md §2.3)")
-        .def(2.0)
+  // A style that derives the stiffness itself (per contact) makes it optional.
+  static void declare(ParamSpec& s, double default_exponent = 2.0, bool stiffness_required = true) {
+    auto& k = s.real("stiffness", "normal stiffness k_c: F_N = k_c overlap^p").positive();
+    if (stiffness_required) k.required();
+    s.real("exponent",
+           "normal force law exponent p (2: quadratic as in 2D, MODELS.md §2.3; 1: "
+           "linear as the 3D rods, §5.1)")
+        .def(default_exponent)
         .min(1.0)
         .max(3.0);
     s.real("damping", "normal dashpot d_c (force per normal velocity)").def(0.0).nonnegative();
@@ -46,7 +50,7 @@ struct ContactLaw {
   }
   static ContactLaw from(const ParamValues& p, double length_scale) {
     ContactLaw c;
-    c.stiffness = p.real("stiffness");
+    c.stiffness = p.has("stiffness") ? p.real("stiffness") : 0.0;
     c.exponent = p.real("exponent");
     c.damping = p.real("damping");
     c.mu_static = p.real("mu_static");

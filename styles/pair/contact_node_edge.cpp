@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cell_grid.hpp"
 #include "chain_select.hpp"
 #include "contact_law.hpp"
 #include "registry.hpp"
@@ -208,37 +209,17 @@ class NodeEdgeContactPair : public PairStyle {
     auto& x = sim.nodes().x;
     const double cutoff = d_ + skin_;
     double lmax = 0.0;
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (auto& e : edges_) {
       lmax = std::max(lmax, (x[e.b] - x[e.a]).norm());
       for (int i : {e.a, e.b}) {
-        lo = lo.cwiseMin(x[i].head<2>());
-        hi = hi.cwiseMax(x[i].head<2>());
+        lo = lo.cwiseMin(x[i]);
+        hi = hi.cwiseMax(x[i]);
       }
     }
-    const double cs = cutoff + 0.5 * lmax;
-    const size_t nedges = edges_.size();
-    const int nx = std::clamp(static_cast<int>((hi.x() - lo.x()) / cs) + 1, 1, 1 << 14);
-    const int ny = std::clamp(static_cast<int>((hi.y() - lo.y()) / cs) + 1, 1, 1 << 14);
-    auto cell_of = [&](const Vec3& p, int& cx, int& cy) {
-      cx = std::clamp(static_cast<int>((p.x() - lo.x()) / cs), 0, nx - 1);
-      cy = std::clamp(static_cast<int>((p.y() - lo.y()) / cs), 0, ny - 1);
-    };
-    // counting sort of edges into cells
-    cell_start_.assign(static_cast<size_t>(nx) * ny + 1, 0);
-    edge_cell_.resize(nedges);
-    for (size_t k = 0; k < nedges; ++k) {
-      int cx, cy;
-      cell_of(0.5 * (x[edges_[k].a] + x[edges_[k].b]), cx, cy);
-      edge_cell_[k] = cy * nx + cx;
-      ++cell_start_[static_cast<size_t>(edge_cell_[k]) + 1];
-    }
-    for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-    cell_items_.resize(nedges);
-    fill_ = cell_start_;
-    for (size_t k = 0; k < nedges; ++k)
-      cell_items_[static_cast<size_t>(fill_[static_cast<size_t>(edge_cell_[k])]++)] =
-          static_cast<int>(k);
+    mid_.resize(edges_.size());
+    for (size_t k = 0; k < edges_.size(); ++k) mid_[k] = 0.5 * (x[edges_[k].a] + x[edges_[k].b]);
+    grid_.build(lo, hi, cutoff + 0.5 * lmax, 2, mid_);
 
     old_.swap(list_);
     list_.clear();
@@ -246,29 +227,20 @@ class NodeEdgeContactPair : public PairStyle {
     for (size_t i = 0; i < chain_of_.size(); ++i) {
       if (chain_of_[i] < 0) continue;
       const int node = static_cast<int>(i);
-      int cx, cy;
-      cell_of(x[i], cx, cy);
       const size_t first = list_.size();
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int gx = cx + dx, gy = cy + dy;
-          if (gx < 0 || gy < 0 || gx >= nx || gy >= ny) continue;
-          const size_t cell = static_cast<size_t>(gy) * nx + gx;
-          for (int k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-            const int eid = cell_items_[static_cast<size_t>(k)];
-            const Edge& e = edges_[static_cast<size_t>(eid)];
-            if (excluded(node, e)) continue;
-            const Vec3 seg = x[e.b] - x[e.a];
-            const double len2 = seg.squaredNorm();
-            const double t = len2 > 0 ? std::clamp((x[i] - x[e.a]).dot(seg) / len2, 0.0, 1.0) : 0.0;
-            if ((x[i] - x[e.a] - t * seg).squaredNorm() < cut2) {
-              Entry en;
-              en.node = node;
-              en.edge = eid;
-              list_.push_back(en);
-            }
-          }
+      grid_.for_each_near(x[i], [&](int eid) {
+        const Edge& e = edges_[static_cast<size_t>(eid)];
+        if (excluded(node, e)) return;
+        const Vec3 seg = x[e.b] - x[e.a];
+        const double len2 = seg.squaredNorm();
+        const double t = len2 > 0 ? std::clamp((x[i] - x[e.a]).dot(seg) / len2, 0.0, 1.0) : 0.0;
+        if ((x[i] - x[e.a] - t * seg).squaredNorm() < cut2) {
+          Entry en;
+          en.node = node;
+          en.edge = eid;
+          list_.push_back(en);
         }
+      });
       std::sort(list_.begin() + static_cast<long>(first), list_.end(),
                 [](const Entry& a, const Entry& b) { return a.edge < b.edge; });
     }
@@ -316,7 +288,8 @@ class NodeEdgeContactPair : public PairStyle {
   std::vector<Edge> edges_;
   std::vector<int> chain_of_, pos_in_chain_;
   std::vector<Entry> list_, old_;
-  std::vector<int> cell_start_, fill_, cell_items_, edge_cell_;
+  CellGrid grid_;
+  std::vector<Vec3> mid_;
   std::vector<Vec3> x_build_;
   bool need_build_ = true;
   long last_build_step_ = 0;

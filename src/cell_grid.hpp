@@ -1,0 +1,74 @@
+// Linked cells shared by the contact pair styles (MODELS.md §2.3, §5.1): items
+// (nodes, edge midpoints) are binned by a counting sort into a uniform grid over
+// a bounding box, and a query visits the items of the 3^dim cells around a point.
+// The same grid serves 2D (one layer of cells) and 3D.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "nodes.hpp"
+
+namespace slender {
+
+class CellGrid {
+ public:
+  // Bins the items at `pos` into cells of size `cell` over the box [lo, hi]
+  // (points outside fall into the border cells); `dim` is 2 or 3.
+  void build(const Vec3& lo, const Vec3& hi, double cell, int dim, const std::vector<Vec3>& pos) {
+    lo_ = lo;
+    cs_ = cell;
+    dim_ = dim;
+    for (int a = 0; a < 3; ++a)
+      n_[a] = a < dim ? std::clamp(static_cast<int>((hi[a] - lo[a]) / cell) + 1, 1, 1 << 14) : 1;
+    const std::size_t ncell = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
+    start_.assign(ncell + 1, 0);
+    item_cell_.resize(pos.size());
+    for (std::size_t k = 0; k < pos.size(); ++k) {
+      item_cell_[k] = cell_index(pos[k]);
+      ++start_[static_cast<std::size_t>(item_cell_[k]) + 1];
+    }
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    items_.resize(pos.size());
+    fill_ = start_;
+    for (std::size_t k = 0; k < pos.size(); ++k)
+      items_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(item_cell_[k])]++)] =
+          static_cast<int>(k);
+  }
+
+  // Calls f(item) for every item in the cells around p (z outermost, then y, x).
+  template <class F>
+  void for_each_near(const Vec3& p, F&& f) const {
+    int c[3];
+    coords(p, c);
+    const int zr = dim_ == 3 ? 1 : 0;
+    for (int dz = -zr; dz <= zr; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int gx = c[0] + dx, gy = c[1] + dy, gz = c[2] + dz;
+          if (gx < 0 || gy < 0 || gz < 0 || gx >= n_[0] || gy >= n_[1] || gz >= n_[2]) continue;
+          const std::size_t cell = (static_cast<std::size_t>(gz) * n_[1] + gy) * n_[0] + gx;
+          for (int k = start_[cell]; k < start_[cell + 1]; ++k)
+            f(items_[static_cast<std::size_t>(k)]);
+        }
+  }
+
+ private:
+  void coords(const Vec3& p, int c[3]) const {
+    for (int a = 0; a < 3; ++a)
+      c[a] = a < dim_ ? std::clamp(static_cast<int>((p[a] - lo_[a]) / cs_), 0, n_[a] - 1) : 0;
+  }
+  int cell_index(const Vec3& p) const {
+    int c[3];
+    coords(p, c);
+    return (c[2] * n_[1] + c[1]) * n_[0] + c[0];
+  }
+
+  Vec3 lo_ = Vec3::Zero();
+  double cs_ = 1.0;
+  int dim_ = 2;
+  int n_[3] = {1, 1, 1};
+  std::vector<int> start_, fill_, items_, item_cell_;
+};
+
+}  // namespace slender

@@ -1,0 +1,270 @@
+// Segment-segment contact of 3D rods (MODELS.md §5.1). Broad phase: the shared
+// linked cells over edge midpoints and a pair list of edge pairs closer than
+// 2a + skin, rebuilt when a node moved more than skin/2 (or every N steps).
+// Dense phase: the closest points S1, S2 of the two segments (clamped, with a
+// parallel fallback at the middle of the overlap), overlap 2a - |S1 - S2| along
+// n = (S1 - S2)/|S1 - S2|, the shared contact law (linear Hertz-cylinder force
+// E* overlap by default, dashpot, stick-slip friction in the tangent plane), and
+// the lever rule onto the four nodes, so that momentum is conserved exactly.
+#include <algorithm>
+#include <cmath>
+
+#include "cell_grid.hpp"
+#include "chain_select.hpp"
+#include "contact_law.hpp"
+#include "registry.hpp"
+#include "segment_geometry.hpp"
+
+namespace slender {
+
+class SegmentContactPair : public PairStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("pair", name,
+                "3D segment-segment contact of rods: Hertz-cylinder repulsion, dashpot, stick-slip "
+                "Coulomb friction (MODELS.md §5.1)");
+    s.real("radius", "rod radius a: contact when two segments are closer than 2a")
+        .def(1.0)
+        .positive();
+    ContactLaw::declare(s, 1.0, false);
+    s.real("youngs_modulus",
+           "Y: stiffness E* = 2 pi Y (l1 + l2) / (8 (1 - nu^2)) from the rest lengths of the two "
+           "edges (instead of a fixed 'stiffness')")
+        .positive();
+    s.real("poisson", "Poisson ratio nu for E*").def(0.33).min(0.0).max(0.5, true);
+    s.real("skin", "pair-list skin: pairs closer than 2a + skin are listed").def(1.0).positive();
+    s.integer("rebuild_every", "rebuild the pair list every N steps (0: when a node moved skin/2)")
+        .def(0.0)
+        .min(0);
+    s.integer("exclude",
+              "skip edge pairs within this many edges along the same chain (default ceil(2a / "
+              "l0) + 1)")
+        .min(0);
+    s.add("chains", ParamType::StringList, "chains that touch each other (default: all)")
+        .def(std::vector<std::string>{});
+    return s;
+  }
+
+  SegmentContactPair(Simulation& sim, const ParamValues& p)
+      : a_(p.real("radius")),
+        law_(ContactLaw::from(p, 2.0 * p.real("radius"))),
+        skin_(p.real("skin")),
+        every_(p.integer("rebuild_every")),
+        names_(p.strings("chains")) {
+    if (sim.dimension() != 3)
+      throw InputError("pair style 'contact/segment' needs a 3D simulation (dimension = 3)");
+    const bool has_k = p.has("stiffness"), has_y = p.has("youngs_modulus");
+    if (has_k == has_y)
+      throw InputError("pair style 'contact/segment': give either 'stiffness' or 'youngs_modulus'");
+    if (has_y) {
+      const double nu = p.real("poisson");
+      estar_per_length_ = 2.0 * M_PI * p.real("youngs_modulus") / (8.0 * (1.0 - nu * nu));
+    }
+    auto chains = select_chains(sim, names_);
+    const double l0 = chains.empty() ? 2.0 * a_ : min_rest(chains);
+    exclude_ = p.has("exclude") ? static_cast<int>(p.integer("exclude"))
+                                : static_cast<int>(std::ceil(2.0 * a_ / l0)) + 1;
+    // defaults as in 2D with k_c -> E* of two rest edges (§5.1): k_st = k / 10
+    nominal_k_ = has_y ? estar_per_length_ * 2.0 * l0 : law_.stiffness;
+    if (!p.has("stick_stiffness")) law_.stick_stiffness = 0.1 * nominal_k_;
+  }
+
+  void setup(Simulation& sim) override {
+    chains_ = select_chains(sim, names_);
+    edges_.clear();
+    for (size_t c = 0; c < chains_.size(); ++c) {
+      const Chain& ch = *chains_[c];
+      for (int e = 0; e < ch.n_edges(); ++e)
+        edges_.push_back(
+            Edge{ch.edge_tail(e), ch.edge_head(e), static_cast<int>(c), e, ch.rest_length[e]});
+    }
+    need_build_ = true;
+    bound_ = true;
+  }
+
+  double compute(Simulation& sim) override {
+    if (!bound_ || topology_changed()) setup(sim);
+    if (need_build_ || due(sim)) build(sim);
+    auto& x = sim.nodes().x;
+    auto& v = sim.nodes().v;
+    auto& f = sim.nodes().f;
+    const double dt = sim.dt, reach = 2.0 * a_;
+    double energy = 0.0;
+    contacts_ = 0;
+    ContactLaw law = law_;
+    for (auto& c : list_) {
+      const Edge& e1 = edges_[static_cast<size_t>(c.e1)];
+      const Edge& e2 = edges_[static_cast<size_t>(c.e2)];
+      double s, t;
+      closest_points(x[e1.a], x[e1.b], x[e2.a], x[e2.b], s, t);
+      const Vec3 p1 = x[e1.a] + s * (x[e1.b] - x[e1.a]);
+      const Vec3 p2 = x[e2.a] + t * (x[e2.b] - x[e2.a]);
+      const Vec3 d12 = p1 - p2;
+      const double dist = d12.norm();
+      if (dist >= reach || dist == 0.0) {
+        c.st.active = false;
+        c.st.stick = false;
+        c.st.xi.setZero();
+        continue;
+      }
+      const Vec3 n = d12 / dist;
+      const Vec3 vrel = ((1 - s) * v[e1.a] + s * v[e1.b]) - ((1 - t) * v[e2.a] + t * v[e2.b]);
+      if (estar_per_length_ > 0) law.stiffness = estar_per_length_ * (e1.rest + e2.rest);
+      double e_contact = 0.0;
+      const Vec3 F = law.force(reach - dist, n, vrel, dt, c.st, nullptr, &e_contact);
+      f[e1.a] += (1 - s) * F;
+      f[e1.b] += s * F;
+      f[e2.a] -= (1 - t) * F;
+      f[e2.b] -= t * F;
+      energy += e_contact;
+      ++contacts_;
+    }
+    return energy;
+  }
+
+  double max_frequency(const Simulation& sim) const override {
+    auto chains = select_chains(sim, names_);
+    if (chains.empty()) return 0.0;
+    const double m = min_mass(sim, chains);
+    // two nodes on the contact spring at an overlap of a tenth of a radius
+    ContactLaw law = law_;
+    law.stiffness = nominal_k_;
+    const double k =
+        law.tangent_stiffness(0.1 * a_) + (law.frictional() ? law.stick_stiffness : 0.0);
+    return std::sqrt(2.0 * k / m);
+  }
+  std::vector<std::string> value_keys() const override { return {"contacts", "pairs", "builds"}; }
+  double value(const std::string& key) const override {
+    if (key == "contacts") return contacts_;
+    if (key == "pairs") return static_cast<double>(list_.size());
+    if (key == "builds") return builds_;
+    return PairStyle::value(key);
+  }
+  void save_state(StateMap& st) const override {
+    std::vector<double> flat;
+    for (auto& e : list_)
+      flat.insert(flat.end(), {double(e.e1), double(e.e2), e.st.xi.x(), e.st.xi.y(), e.st.xi.z(),
+                               e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0});
+    st["history"] = flat;
+    st["counters"] = {builds_, static_cast<double>(last_build_step_)};
+  }
+  void load_state(const StateMap& st) override {
+    list_.clear();
+    auto& h = st.at("history");
+    for (size_t k = 0; k + 7 <= h.size(); k += 7) {
+      Entry e;
+      e.e1 = static_cast<int>(h[k]);
+      e.e2 = static_cast<int>(h[k + 1]);
+      e.st.xi = Vec3(h[k + 2], h[k + 3], h[k + 4]);
+      e.st.stick = h[k + 5] != 0;
+      e.st.active = h[k + 6] != 0;
+      list_.push_back(e);
+    }
+    builds_ = st.at("counters")[0];
+    last_build_step_ = static_cast<long>(st.at("counters")[1]);
+  }
+
+ private:
+  struct Edge {
+    int a, b, chain, index;
+    double rest;
+  };
+  struct Entry {
+    int e1 = 0, e2 = 0;
+    FrictionState st;
+  };
+
+  bool topology_changed() const {
+    size_t ne = 0;
+    for (auto* c : chains_) ne += static_cast<size_t>(c->n_edges());
+    return ne != edges_.size();
+  }
+  bool due(const Simulation& sim) const {
+    if (every_ > 0) return sim.step - last_build_step_ >= every_;
+    if (x_build_.size() != sim.nodes().x.size()) return true;
+    const double lim = 0.25 * skin_ * skin_;  // (skin/2)^2
+    auto& x = sim.nodes().x;
+    for (size_t i = 0; i < x_build_.size(); ++i)
+      if ((x[i] - x_build_[i]).squaredNorm() > lim) return true;
+    return false;
+  }
+  bool excluded(const Edge& e, const Edge& o) const {
+    if (e.chain != o.chain) return false;
+    const Chain& ch = *chains_[static_cast<size_t>(e.chain)];
+    int g = std::abs(e.index - o.index);
+    if (ch.closed) g = std::min(g, ch.n_edges() - g);
+    return g <= exclude_;
+  }
+
+  void build(Simulation& sim) {
+    auto& x = sim.nodes().x;
+    const double cutoff = 2.0 * a_ + skin_;
+    double lmax = 0.0;
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    mid_.resize(edges_.size());
+    for (size_t k = 0; k < edges_.size(); ++k) {
+      const Edge& e = edges_[k];
+      lmax = std::max(lmax, (x[e.b] - x[e.a]).norm());
+      lo = lo.cwiseMin(x[e.a]).cwiseMin(x[e.b]);
+      hi = hi.cwiseMax(x[e.a]).cwiseMax(x[e.b]);
+      mid_[k] = 0.5 * (x[e.a] + x[e.b]);
+    }
+    // two segments within the cutoff have midpoints within cutoff + lmax
+    grid_.build(lo, hi, cutoff + lmax, 3, mid_);
+    old_.swap(list_);
+    list_.clear();
+    const double cut2 = cutoff * cutoff;
+    for (size_t k = 0; k < edges_.size(); ++k) {
+      const Edge& e = edges_[k];
+      const size_t first = list_.size();
+      grid_.for_each_near(mid_[k], [&](int j) {
+        if (static_cast<size_t>(j) <= k) return;  // each pair once
+        const Edge& o = edges_[static_cast<size_t>(j)];
+        if (excluded(e, o)) return;
+        double s, t;
+        closest_points(x[e.a], x[e.b], x[o.a], x[o.b], s, t);
+        const Vec3 d = (x[e.a] + s * (x[e.b] - x[e.a])) - (x[o.a] + t * (x[o.b] - x[o.a]));
+        if (d.squaredNorm() < cut2) {
+          Entry en;
+          en.e1 = static_cast<int>(k);
+          en.e2 = j;
+          list_.push_back(en);
+        }
+      });
+      std::sort(list_.begin() + static_cast<long>(first), list_.end(),
+                [](const Entry& a, const Entry& b) { return a.e2 < b.e2; });
+    }
+    // carry the friction history of pairs that stay listed (both lists are sorted)
+    size_t j = 0;
+    for (auto& e : list_) {
+      while (j < old_.size() && (old_[j].e1 < e.e1 || (old_[j].e1 == e.e1 && old_[j].e2 < e.e2)))
+        ++j;
+      if (j < old_.size() && old_[j].e1 == e.e1 && old_[j].e2 == e.e2) e.st = old_[j].st;
+    }
+    x_build_ = x;
+    last_build_step_ = sim.step;
+    need_build_ = false;
+    builds_ += 1;
+  }
+
+  double a_;
+  ContactLaw law_;
+  double skin_;
+  long every_;
+  int exclude_ = 3;
+  double estar_per_length_ = 0.0, nominal_k_ = 0.0;
+  std::vector<std::string> names_;
+  std::vector<const Chain*> chains_;
+  std::vector<Edge> edges_;
+  std::vector<Entry> list_, old_;
+  CellGrid grid_;
+  std::vector<Vec3> mid_, x_build_;
+  bool need_build_ = true, bound_ = false;
+  long last_build_step_ = 0;
+  double builds_ = 0;
+  int contacts_ = 0;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::PairStyle, "contact/segment", slender::SegmentContactPair)

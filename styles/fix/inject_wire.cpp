@@ -1,5 +1,7 @@
-// Wire injection into a circular cavity through straight channels along the x
-// axis (MODELS.md §2.4). Nodes in a channel (|x - c_x| >= r - d/2) are kinematic: their
+// Wire injection into a circular (2D) or spherical (3D) cavity through straight
+// channels: along the x axis from one or both sides (MODELS.md §2.4), or through a
+// nozzle in the sphere (§5.3). Nodes in a channel (beyond r - d/2 from the centre
+// along the channel axis) are kinematic: their
 // degrees of freedom are clamped and they move inward at the feed speed. When the
 // outermost channel node has moved one rest length, a new node enters behind it;
 // a node that passes the cavity's rim becomes free. The injection force is the
@@ -20,20 +22,31 @@ class WireInjectionFix : public FixStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("fix", name,
-                "push a wire into a circular cavity through one or two channels along x; "
-                "injection force, packing density, jamming stop (MODELS.md §2.4)");
-    s.string("chain", "the injected wire: straight along x, its ends in the channels").required();
+                "push a wire into a circular or spherical cavity through channels along x or "
+                "a nozzle; injection force, packing density, jamming stop (MODELS.md §2.4, "
+                "§5.3)");
+    s.string("chain",
+             "the injected wire: straight along the channel axis, its pushed ends in "
+             "the channels")
+        .required();
     s.real("radius", "cavity radius r").required().positive();
     s.vector("center", "cavity centre").def(std::vector<double>{0, 0}).length(2, 3);
-    s.string("channels", "opposite: both ends are pushed; left / right: one end")
+    s.string("channels",
+             "opposite: both ends pushed along x; left / right: one end along x; nozzle: one end "
+             "along 'direction'")
         .def(std::string("opposite"))
-        .choices({"opposite", "left", "right"});
+        .choices({"opposite", "left", "right", "nozzle"});
+    s.vector("direction", "nozzle: inward direction of the feed (the nozzle sits at c - r dir)")
+        .def(std::vector<double>{0, 0, -1})
+        .length(2, 3);
     s.real("speed",
            "feed speed v_in (length per time unit) of each channel; sim:modify can set 0 "
            "to hold the wire (the force protocol of MODELS.md §2.4)")
         .required()
         .nonnegative();
-    s.real("diameter", "wire diameter d, for the packing density d L / (pi r^2)")
+    s.real("diameter",
+           "wire diameter d = 2a, for the packing density d L / (pi r^2) in 2D and "
+           "L pi a^2 / (4/3 pi r^3) in 3D")
         .def(1.0)
         .positive();
     s.real("jam_force", "stop when the moving average of the injection force exceeds this")
@@ -59,29 +72,34 @@ class WireInjectionFix : public FixStyle {
         growth_(p.real("jam_growth")),
         dphi_(p.real("jam_dphi")),
         max_phi_(p.real("max_phi")) {
-    if (sim.dimension() != 2) throw InputError("fix style 'inject/wire' needs a 2D simulation");
+    dim_ = sim.dimension();
     Chain* c = sim.topology().find(chain_);
     if (!c) throw InputError("fix style 'inject/wire': unknown chain '" + chain_ + "'");
     if (c->closed) throw InputError("fix style 'inject/wire': the chain must be open");
     auto& x = sim.nodes().x;
-    const double x_first = x[c->nodes.front()].x() - c_.x(),
-                 x_last = x[c->nodes.back()].x() - c_.x();
     const std::string ch = p.str("channels");
-    // each pushed end must start in its channel, outside the cavity
-    auto end_for = [&](bool left) -> int {
-      // the end lying on this side: front or back of the chain
-      const bool front_is_left = x_first < x_last;
-      return left == front_is_left ? 0 : 1;
+    // the pushed end of a channel with inward direction u: the chain end lying
+    // farther out along -u
+    auto end_for = [&](const Vec3& u) {
+      return (x[c->nodes.front()] - c_).dot(u) < (x[c->nodes.back()] - c_).dot(u);
     };
-    if (ch == "opposite" || ch == "left") channels_.push_back(Channel{end_for(true) == 0, +1.0});
-    if (ch == "opposite" || ch == "right") channels_.push_back(Channel{end_for(false) == 0, -1.0});
+    auto add = [&](const Vec3& u) { channels_.push_back(Channel{end_for(u), u}); };
+    if (ch == "opposite" || ch == "left") add(Vec3(1, 0, 0));
+    if (ch == "opposite" || ch == "right") add(Vec3(-1, 0, 0));
+    if (ch == "nozzle") {
+      Vec3 u = p.vec3("direction");
+      if (dim_ == 2) u.z() = 0.0;
+      if (u.norm() == 0.0) throw InputError("fix style 'inject/wire': direction must not be zero");
+      add(u.normalized());
+    }
     for (auto& k : channels_) {
       const int node = k.front ? c->nodes.front() : c->nodes.back();
-      if (std::abs(x[node].x() - c_.x()) < r_)
+      if (-(x[node] - c_).dot(k.u) < r_)
         throw InputError("fix style 'inject/wire': the chain's end node " +
                          std::to_string(node + 1) +
-                         " must start in its channel, outside the cavity (|x - c| >= r)");
-      k.anchor = x[node].x();
+                         " must start in its channel, outside the cavity (at least r from the "
+                         "centre along the channel)");
+      k.anchor = x[node];
       k.rest = k.front ? c->rest_length.front() : c->rest_length.back();
       k.mass = sim.nodes().mass[node];
     }
@@ -95,7 +113,7 @@ class WireInjectionFix : public FixStyle {
   void setup(Simulation& sim) override {
     mask_ = sim.nodes().find<int>("dof_mask");
     // a changed feed speed (sim:modify) applies to the nodes already in the channels
-    for (int i : driven_) sim.nodes().v[i] = Vec3(v_ * inward(sim.nodes().x[i]), 0, 0);
+    for (int i : driven_) sim.nodes().v[i] = v_ * driving(sim.nodes().x[i]).u;
   }
   void modify(const RawParams& raw) override {
     // only the feed speed may change between runs; the rest is the scene's geometry
@@ -113,7 +131,7 @@ class WireInjectionFix : public FixStyle {
     // the feeder balances the inward component of the internal forces
     auto& f = sim.nodes().f;
     double total = 0.0;
-    for (int i : driven_) total -= f[i].x() * inward(sim.nodes().x[i]);
+    for (int i : driven_) total -= f[i].dot(driving(sim.nodes().x[i]).u);
     force_ = total;
     return 0.0;
   }
@@ -135,8 +153,9 @@ class WireInjectionFix : public FixStyle {
     // feed: a new node enters behind the outermost one
     for (auto& k : channels_) {
       const int outer = k.front ? c->nodes.front() : c->nodes.back();
-      if (std::abs(x[outer].x() - k.anchor) >= k.rest) {
-        const Vec3 pos(x[outer].x() - k.dir * k.rest, c_.y(), 0.0);
+      if (std::abs((x[outer] - k.anchor).dot(k.u)) >= k.rest) {
+        Vec3 pos = x[outer] - k.u * k.rest;
+        to_axis(pos, k.u);
         const int n = sim.grow_chain(chain_, k.front, pos, k.mass, k.rest);
         mask_ = sim.nodes().find<int>("dof_mask");
         drive(sim, n);
@@ -185,16 +204,27 @@ class WireInjectionFix : public FixStyle {
     return FixStyle::value(key);
   }
   void save_state(StateMap& st) const override {
-    std::vector<double> ch;
-    for (auto& k : channels_) ch.push_back(k.anchor);
+    std::vector<double> ch, anchors;
+    for (auto& k : channels_) {
+      ch.push_back(k.anchor.x());
+      anchors.insert(anchors.end(), {k.anchor.x(), k.anchor.y(), k.anchor.z()});
+    }
     st["channels"] = ch;
+    st["anchors"] = anchors;
     st["scalars"] = {force_, avg_, phi_, static_cast<double>(jammed_), injected_, sum_};
     st["history"] = std::vector<double>(history_.begin(), history_.end());
     st["driven"] = std::vector<double>(driven_.begin(), driven_.end());
   }
   void load_state(const StateMap& st) override {
-    auto& ch = st.at("channels");
-    for (size_t i = 0; i < channels_.size() && i < ch.size(); ++i) channels_[i].anchor = ch[i];
+    if (st.count("anchors")) {
+      auto& a = st.at("anchors");
+      for (size_t i = 0; i < channels_.size() && 3 * i + 2 < a.size(); ++i)
+        channels_[i].anchor = Vec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+    } else {  // checkpoints of 2D runs before nozzles: the x coordinate on the axis
+      auto& ch = st.at("channels");
+      for (size_t i = 0; i < channels_.size() && i < ch.size(); ++i)
+        channels_[i].anchor = Vec3(ch[i], c_.y(), 0.0);
+    }
     auto& s = st.at("scalars");
     force_ = s[0];
     avg_ = s[1];
@@ -210,44 +240,63 @@ class WireInjectionFix : public FixStyle {
 
  private:
   struct Channel {
-    bool front;  // the pushed end is the chain's first node (else its last)
-    double dir;  // inward direction along x: +1 from the left, -1 from the right
-    double anchor = 0, rest = 1, mass = 1;
+    bool front;                  // the pushed end is the chain's first node (else its last)
+    Vec3 u;                      // inward unit direction; the channel axis runs through the centre
+    Vec3 anchor = Vec3::Zero();  // where the outermost node was when it entered
+    double rest = 1, mass = 1;
   };
-  // A channel node is released once it is clear of the wall, |x - c_x| < r - d/2,
-  // so a new free node never starts overlapping the cavity wall.
-  // Only sides with a channel count: with channels = "left" the wire's other end is free.
-  bool in_channel(const Vec3& x) const {
-    if (std::abs(x.x() - c_.x()) < r_ - 0.5 * d_) return false;
+  // The channel a point lies in: beyond r - d/2 from the centre along its axis, so
+  // that a released node never starts overlapping the cavity wall. Only sides with
+  // a channel count: with channels = "left" the wire's other end is free.
+  const Channel* channel_of(const Vec3& x) const {
     for (auto& k : channels_)
-      if (k.dir == inward(x)) return true;
-    return false;
+      if (-(x - c_).dot(k.u) >= r_ - 0.5 * d_) return &k;
+    return nullptr;
   }
-  double inward(const Vec3& x) const { return x.x() < c_.x() ? 1.0 : -1.0; }
+  bool in_channel(const Vec3& x) const { return channel_of(x) != nullptr; }
+  // The channel a driven node belongs to: the one it lies farthest out along (a
+  // driven node can pass r - d/2 within a step before it is released).
+  const Channel& driving(const Vec3& x) const {
+    const Channel* best = &channels_.front();
+    for (auto& k : channels_)
+      if (-(x - c_).dot(k.u) > -(x - c_).dot(best->u)) best = &k;
+    return *best;
+  }
+  // moves a point onto the channel axis (the channel holds the wire straight)
+  void to_axis(Vec3& x, const Vec3& u) const {
+    const Vec3 r = x - c_;
+    x -= r - u * r.dot(u);
+    if (dim_ == 2) x.z() = 0.0;
+  }
   void drive(Simulation& sim, int i) {
     (*mask_)[i] = 7;
     driven_.push_back(i);
-    sim.nodes().v[i] = Vec3(v_ * inward(sim.nodes().x[i]), 0, 0);
-    sim.nodes().x[i].y() = c_.y();
+    const Channel& k = driving(sim.nodes().x[i]);
+    sim.nodes().v[i] = v_ * k.u;
+    to_axis(sim.nodes().x[i], k.u);
   }
   double packing(Simulation& sim) {
     Chain* c = sim.topology().find(chain_);
     auto& x = sim.nodes().x;
     double length = 0.0;
     inside_ = 0;
-    for (int e = 0; e < c->n_edges(); ++e) {
-      const Vec3 mid = 0.5 * (x[c->edge_tail(e)] + x[c->edge_head(e)]) - c_;
-      if (mid.head<2>().norm() < r_) length += c->rest_length[e];
-    }
+    auto inside = [&](const Vec3& p) {
+      return (dim_ == 2 ? (p - c_).head<2>().norm() : (p - c_).norm()) < r_;
+    };
+    for (int e = 0; e < c->n_edges(); ++e)
+      if (inside(0.5 * (x[c->edge_tail(e)] + x[c->edge_head(e)]))) length += c->rest_length[e];
     for (int i : c->nodes)
-      if ((x[i] - c_).head<2>().norm() < r_) ++inside_;
-    return d_ * length / (M_PI * r_ * r_);
+      if (inside(x[i])) ++inside_;
+    if (dim_ == 2) return d_ * length / (M_PI * r_ * r_);
+    // 3D (MODELS.md §5.4): phi = L pi a^2 / (4/3 pi R^3), a = d / 2
+    return length * 0.25 * d_ * d_ / (4.0 / 3.0 * r_ * r_ * r_);
   }
 
   std::string chain_;
   double r_;
   Vec3 c_;
   double v_, d_, jam_force_;
+  int dim_ = 2;
   long window_;
   double growth_, dphi_, max_phi_;
   std::vector<Channel> channels_;

@@ -118,3 +118,48 @@ TEST(WireInjectionFix, ModifiedSpeedHoldsAndResumesTheFeed) {
   EXPECT_THROW(sim->fix("feed").modify(P({{"radius", 5.0}})), InputError);
   EXPECT_THROW(sim->fix("feed").modify(P({{"speed", -1.0}})), InputError);
 }
+
+TEST(WireInjectionFix, NozzleFeedsA3dWireAlongItsAxis) {
+  // a 3D wire fed through a nozzle at (0, 0, R) pointing down (MODELS.md §5.3)
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  const double R = 6.0, v = 0.2;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 6; ++i) pts.emplace_back(0, 0, R + 2.0 - i);  // 3 nodes in the nozzle
+  sim->add_chain("wire", pts, 1.0, false);
+  sim->add_bond("spring", P({{"k", 1000.0}}));
+  sim->add_bond("rod/straight", P({{"YI", 60.0}}));
+  sim->add_fix("feed", "inject/wire",
+               P({{"chain", std::string("wire")},
+                  {"radius", R},
+                  {"speed", v},
+                  {"channels", std::string("nozzle")},
+                  {"diameter", 1.0},
+                  {"center", std::vector<double>{0, 0, 0}}}));
+  sim->set_integrator("gear", P({{"dt", 0.002}, {"values", 6.0}}));
+  sim->run(RunOptions{10000, 0, {}});  // t = 20: feeds 4
+  const double fed = sim->fix("feed").value("injected");
+  EXPECT_NEAR(fed, v * 20.0, 1.0 + 1e-9);
+  EXPECT_EQ(sim->nodes().size(), 6 + static_cast<size_t>(std::lround(fed)));
+  // the channel holds the wire on the axis; the free straight wire stays on it too
+  for (auto& x : sim->nodes().x) EXPECT_LT(x.head<2>().norm(), 1e-9);
+  // 3D packing density: L pi a^2 / (4/3 pi R^3), L the length inside the sphere
+  const Chain& c = sim->topology().chains[0];
+  double inside = 0;
+  for (int e = 0; e < c.n_edges(); ++e)
+    if ((0.5 * (sim->nodes().x[c.edge_tail(e)] + sim->nodes().x[c.edge_head(e)])).norm() < R)
+      inside += c.rest_length[e];
+  EXPECT_NEAR(sim->fix("feed").value("phi"), inside * 0.25 / (4.0 / 3.0 * R * R * R), 1e-12);
+  EXPECT_GE(inside, 6.0);
+  // a wire whose end is not in the nozzle is refused
+  Simulation bad(3, 1);
+  std::vector<Vec3> in;
+  for (int i = 0; i < 4; ++i) in.emplace_back(0, 0, -i);
+  bad.add_chain("wire", in, 1.0, false);
+  EXPECT_THROW(bad.add_fix("feed", "inject/wire",
+                           P({{"chain", std::string("wire")},
+                              {"radius", R},
+                              {"speed", v},
+                              {"channels", std::string("nozzle")}})),
+               InputError);
+}

@@ -1,0 +1,83 @@
+-- The 3D packing scene of MODELS.md §5 (thesis ch. 4): a rod fed through a nozzle
+-- at (0, 0, R) into a rigid sphere of radius R until the injection force passes a
+-- threshold. Shared by the decks in this folder, which pick the rod model.
+--
+-- Units (§1): rod radius a = 1, Y = 1000, nu = 0.33, density 1, rest segment length
+-- l0 = a. So YA = pi Y, YI = pi Y / 4, node mass rho A l0 = pi. Defaults marked [C]
+-- in §5: contact and wall stiffness E* of two rest edges, k_st = E* / 10, contact
+-- damping 0.1 * 2 sqrt(m E*), feed speed 1e-3 sqrt(Y / rho), viscous damping
+-- 0.01 sqrt(k1 m), Gear q = 6. Stop when the injection force averaged over 1000
+-- steps exceeds F_stop = max(0.01 YA, 20 YI / R^2): the [C] default 0.01 YA alone
+-- (F R^2 / YI = 0.04 R^2) lies below the Euler load that the first head-on contact
+-- of the straight rod with the far wall needs (measured: 10 YI / R^2 is not enough at
+-- R = 5, where the rod, clamped in the nozzle and held by friction, hits head-on) for R < 16,
+-- and would end every small-sphere run there.
+local M = {}
+
+function M.build(p)
+  local R = slender.var("R", p.R)
+  local seed = slender.var("seed", 1)
+  local mu_s = slender.var("mu_s", 0.2)
+  local mu_d = slender.var("mu_d", 0.18)
+  local output = slender.var("output", true)
+  local name = p.name
+
+  local a, Y, nu, rho = 1.0, 1000.0, 0.33, 1.0
+  local l0 = a
+  local A, I = math.pi * a ^ 2, math.pi * a ^ 4 / 4
+  local YA, YI = Y * A, Y * I
+  local m = rho * A * l0
+  local estar = 2 * math.pi * Y * (2 * l0) / (8 * (1 - nu ^ 2))
+  local dc = 0.1 * 2 * math.sqrt(m * estar)
+  local speed = slender.var("speed", 1e-3 * math.sqrt(Y / rho))
+
+  local sim = slender.simulation { dimension = 3, seed = seed }
+  -- a straight rod on the nozzle axis: three nodes in the nozzle, two inside;
+  -- random transverse displacements of 0.01 a break the symmetry (§5.3 [T])
+  sim:wire { name = "rod", nodes = 6, spacing = l0, start = { 0, 0, R + 3 * l0 },
+             direction = { 0, 0, -1 }, mass = m, perturb = 0.01 * a }
+  sim:bond("spring", { k = YA / l0 })             -- stretching (4.7)
+  p.bend(sim, { YI = YI, YA = YA, l0 = l0, m = m })  -- the rod model
+  sim:pair("contact/segment", { radius = a, youngs_modulus = Y, poisson = nu, damping = dc,
+                                mu_static = mu_s, mu_dynamic = mu_d, skin = a })
+  sim:fix("sphere", "wall/sphere", { radius = R, diameter = 2 * a, stiffness = estar, exponent = 1,
+                                     damping = dc, mu_static = mu_s, mu_dynamic = mu_d,
+                                     stick_stiffness = 0.1 * estar })
+  sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(YA / l0 * m) })
+  sim:fix("feed", "inject/wire", { chain = "rod", radius = R, center = { 0, 0, 0 }, channels = "nozzle",
+    direction = { 0, 0, -1 }, speed = speed, diameter = 2 * a,
+    jam_force = slender.var("stop_force", math.max(0.01 * YA, 20 * YI / R ^ 2)), jam_window = 1000,
+    max_phi = slender.var("max_phi", 1.0) })
+  sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
+  sim:compute("count", "count", {})
+  sim:thermo { every = slender.var("thermo_every", 10000), file = name .. "_thermo.csv",
+    columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/segment.contacts",
+                "sphere.contacts", "energy.bend", "energy.stretch", "energy.contact", "ke", "count.nodes" } }
+  if output then
+    sim:dump("traj", "h5md", { file = name .. ".h5", every = slender.var("dump_every", 50000),
+                               fields = { "position" } })
+  end
+  return sim, { name = name, R = R, YI = YI, seed = seed, mu_s = mu_s, speed = speed }
+end
+
+function M.run(p)
+  local sim, ctx = M.build(p)
+  local t0 = slender.clock()
+  local node_steps, every = 0, 1000
+  sim:run { steps = slender.var("max_steps", 1e9), every = every,
+            callback = function(s) node_steps = node_steps + every * s:nnodes() end }
+  local wall = slender.clock() - t0
+  local R, YI = ctx.R, ctx.YI
+  slender.result { case = "pack3d/" .. ctx.name, R = R, seed = ctx.seed, mu_s = ctx.mu_s,
+    speed = ctx.speed, phi = sim:value("feed.phi"), stopped = sim:value("feed.jammed"),
+    force_R2_over_YI = sim:value("feed.force_avg") * R * R / YI,
+    bend_R_over_YI = sim:value("energy.bend") * R / YI,
+    -- a large stretch/bend ratio flags a rod compressed by the feed, not packed
+    stretch_over_bend = sim:value("energy.stretch") / math.max(sim:value("energy.bend"), 1e-300),
+    contacts = sim:value("contact/segment.contacts"), nodes = sim:nnodes(), steps = sim:step(),
+    wall_s = wall, node_steps_per_s = node_steps / math.max(wall, 1e-9),
+    ke_per_node = sim:value("ke") / sim:nnodes() }
+  return sim
+end
+
+return M

@@ -5,4 +5,4 @@
 -- Thesis parameters: a = 1, Y = 1000, nu = 0.33, mu_s = 0.2, mu_d = 0.18; R in
 -- {4, 5, 10, 13, 20, 40, 50}.
 require("lib.scene").run { name = "low_torsion", R = 10,
-  bend = function(sim, k) sim:bond("rod/straight", { YI = k.YI }) end }
+  bend = function(sim, k) sim:bond("rod/straight", { YI = k.YI, node_energy = true }) end }

@@ -29,17 +29,25 @@ class StraightRodBond : public ChainBondStyle {
                 "bending of a straight isotropic rod without directors: discrete elastic rod "
                 "curvature binormal, E = YI |kb|^2 / l (MODELS.md §3)");
     s.real("YI", "bending stiffness Y I (moment times length)").required().positive();
+    s.boolean("node_energy",
+              "keep each node's bending energy in the node property bend.energy (for dumps "
+              "and energy distributions; off: nothing allocated)")
+        .def(false);
     declare_chains(s);
     return s;
   }
   StraightRodBond(Simulation& sim, const ParamValues& p)
-      : ChainBondStyle(sim, p), yi_(p.real("YI")) {}
+      : ChainBondStyle(sim, p), yi_(p.real("YI")) {
+    if (p.boolean("node_energy")) node_energy_ = &sim.nodes().require<double>("bend.energy", 0.0);
+  }
   const char* energy_category() const override { return "bend"; }
 
   double compute(Simulation& sim) override {
     auto& x = sim.nodes().x;
     auto& f = sim.nodes().f;
     double energy = 0.0;
+    if (node_energy_)
+      for (auto& e : node_energy_->values()) e = 0.0;
     for (auto* c : chains(sim)) {
       const int nh = c->n_hinges();
       const int ne = c->n_edges();
@@ -55,7 +63,9 @@ class StraightRodBond : public ChainBondStyle {
         const double D = n0 * n1 + e0.dot(e1);
         if (!(D > 1e-12 * n0 * n1)) continue;  // a fully folded hinge has no binormal
         const Vec3 kb = 2.0 * e0.cross(e1) / D;
-        energy += yi_ * kb.squaredNorm() / l;
+        const double e_hinge = yi_ * kb.squaredNorm() / l;
+        energy += e_hinge;
+        if (node_energy_) (*node_energy_)[m] = e_hinge;
         // exact gradients (§3.3); F_k = -(2 YI / l) (grad_k kb)^T kb
         const Vec3 t0 = e0 / n0, t1 = e1 / n1;
         const Eigen::Matrix3d ga = (2.0 * skew(e1) + kb * (e1 + n1 * t0).transpose()) / D;
@@ -78,6 +88,7 @@ class StraightRodBond : public ChainBondStyle {
 
  private:
   double yi_;
+  Property<double>* node_energy_ = nullptr;
 };
 
 }  // namespace slender

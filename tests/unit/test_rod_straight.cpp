@@ -118,3 +118,40 @@ TEST(StraightRodBond, PlanarRodMatchesTheTwoDimensionalBendingSpring) {
   EXPECT_GT(e2d, 0.0);
   EXPECT_NEAR(e3d, e2d, 0.05 * e2d);
 }
+
+TEST(StraightRodBond, NodeEnergiesSumToTheEnergyAndAreAllocatedOnlyOnRequest) {
+  auto pts = wiggly_chain(9, 3, 12, 0.4);
+  Simulation plain(3, 1);
+  plain.add_chain("r", pts, 1.0, false);
+  plain.add_bond("rod/straight", P({{"YI", 2.0}}));
+  EXPECT_EQ(plain.nodes().find<double>("bend.energy"), nullptr);
+  Simulation sim(3, 1);
+  sim.add_chain("r", pts, 1.0, false);
+  sim.add_bond("rod/straight", P({{"YI", 2.0}, {"node_energy", true}}));
+  sim.compute_forces();
+  double sum = 0;
+  for (double e : sim.nodes().find<double>("bend.energy")->values()) sum += e;
+  EXPECT_NEAR(sum, sim.potential_energy(), 1e-12 * sum);
+  EXPECT_EQ(sim.nodes().find<double>("bend.energy")->values().front(), 0.0);  // an end node
+}
+
+TEST(GyrationCompute, RingAndFilledSphereValues) {
+  // a ring of radius R: R_g = R; uniform masses
+  Simulation ring(3, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 64; ++i)
+    pts.emplace_back(2.0 + 3 * std::cos(2 * M_PI * i / 64), 3 * std::sin(2 * M_PI * i / 64), 1.0);
+  ring.add_chain("r", pts, 1.0, true);
+  ring.add_compute("g", "gyration", P({}));
+  EXPECT_NEAR(ring.column("g.rg"), 3.0, 1e-12);
+  // points filling a ball of radius 5 uniformly: R_g^2 = 3/5 R^2 (MODELS.md (4.60) limit);
+  // those outside 'inside' are left out
+  Simulation ball(3, 1);
+  std::vector<Vec3> b;
+  for (double x = -7; x <= 7; x += 0.35)
+    for (double y = -7; y <= 7; y += 0.35)
+      for (double z = -7; z <= 7; z += 0.35) b.emplace_back(x, y, z);
+  ball.add_chain("b", b, 1.0, false);
+  ball.add_compute("g", "gyration", P({{"inside", 5.0}}));
+  EXPECT_NEAR(ball.column("g.rg2"), 0.6 * 25.0, 0.02 * 15.0);
+}

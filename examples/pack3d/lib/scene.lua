@@ -37,7 +37,8 @@ function M.build(p)
   sim:wire { name = "rod", nodes = 6, spacing = l0, start = { 0, 0, R + 3 * l0 },
              direction = { 0, 0, -1 }, mass = m, perturb = 0.01 * a }
   sim:bond("spring", { k = YA / l0 })             -- stretching (4.7)
-  p.bend(sim, { YI = YI, YA = YA, l0 = l0, m = m })  -- the rod model
+  -- the rod model; it keeps per-node bending energies (bend.energy) for the dumps
+  p.bend(sim, { YI = YI, YA = YA, l0 = l0, m = m })
   sim:pair("contact/segment", { radius = a, youngs_modulus = Y, poisson = nu, damping = dc,
                                 mu_static = mu_s, mu_dynamic = mu_d, skin = a })
   sim:fix("sphere", "wall/sphere", { radius = R, diameter = 2 * a, stiffness = estar, exponent = 1,
@@ -50,12 +51,14 @@ function M.build(p)
     max_phi = slender.var("max_phi", 1.0) })
   sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
   sim:compute("count", "count", {})
+  sim:compute("gyr", "gyration", { group = "rod", inside = R })
   sim:thermo { every = slender.var("thermo_every", 10000), file = name .. "_thermo.csv",
     columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/segment.contacts",
-                "sphere.contacts", "energy.bend", "energy.stretch", "energy.contact", "ke", "count.nodes" } }
+                "sphere.contacts", "energy.bend", "energy.stretch", "energy.contact", "gyr.rg", "ke",
+                "count.nodes" } }
   if output then
     sim:dump("traj", "h5md", { file = name .. ".h5", every = slender.var("dump_every", 50000),
-                               fields = { "position" } })
+                               fields = { "position", "bend.energy" } })
   end
   return sim, { name = name, R = R, YI = YI, seed = seed, mu_s = mu_s, speed = speed }
 end
@@ -74,6 +77,7 @@ function M.run(p)
     bend_R_over_YI = sim:value("energy.bend") * R / YI,
     -- a large stretch/bend ratio flags a rod compressed by the feed, not packed
     stretch_over_bend = sim:value("energy.stretch") / math.max(sim:value("energy.bend"), 1e-300),
+    rg_over_R = sim:value("gyr.rg") / R,
     contacts = sim:value("contact/segment.contacts"), nodes = sim:nnodes(), steps = sim:step(),
     wall_s = wall, node_steps_per_s = node_steps / math.max(wall, 1e-9),
     ke_per_node = sim:value("ke") / sim:nnodes() }

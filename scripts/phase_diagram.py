@@ -29,7 +29,8 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FIELDS = ["f", "s", "yield", "mu", "seed", "class", "phi", "jammed", "loops", "winding", "ab_ratio",
-          "contacts", "steps", "wall_s", "status", "error"]
+          "contacts", "steps", "wall_s", "dt", "status", "error"]
+DECK_DT = 0.01 * (1.0 / 1000.0) ** 0.5  # the scene's dt = 0.01 sqrt(m / k1)
 
 
 def classify(row, min_winding=2.0, max_loops=2):
@@ -39,16 +40,29 @@ def classify(row, min_winding=2.0, max_loops=2):
 
 
 def run_one(a, y, mu, seed):
+    """One run; a run the instability guard stopped is repeated once with half the
+    time step (the guard's message names the step it would need)."""
+    row = run_once(a, y, mu, seed, DECK_DT)
+    if row["status"] == "failed" and "instability" in row.get("error", "") and a.retry_dt:
+        first = row["error"]
+        row = run_once(a, y, mu, seed, 0.5 * DECK_DT)
+        if row["status"] == "failed":
+            row["error"] = ("with dt/2: " + row.get("error", "") + " | with dt: " + first)[:300]
+    return row
+
+
+def run_once(a, y, mu, seed, dt):
     args = [a.slender, "-q", os.path.join(a.examples, "crumple2d", "classic.lua"),
             "-v", f"f={a.f}", "-v", f"s={a.s}", "-v", f"yield={y}", "-v", f"mu={mu}",
-            "-v", f"seed={seed}", "-v", "output=false", "-v", f"max_steps={a.max_steps}"]
+            "-v", f"seed={seed}", "-v", "output=false", "-v", f"max_steps={a.max_steps}",
+            "-v", f"dt={dt!r}"]
     with tempfile.TemporaryDirectory() as tmp:
         try:
             p = subprocess.run(args, cwd=tmp, capture_output=True, text=True, timeout=a.timeout)
             rc, out, err = p.returncode, p.stdout, p.stderr
         except subprocess.TimeoutExpired:
             rc, out, err = -1, "", f"timeout after {a.timeout} s"
-    row = {"f": a.f, "s": a.s, "yield": y, "mu": mu, "seed": seed}
+    row = {"f": a.f, "s": a.s, "yield": y, "mu": mu, "seed": seed, "dt": f"{dt:.6g}"}
     res = {}
     for line in out.splitlines():
         if line.startswith("RESULT"):
@@ -128,6 +142,8 @@ def main():
     ap.add_argument("--max-steps", type=float, default=1e9)
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run")
     ap.add_argument("--retry-failed", action="store_true")
+    ap.add_argument("--no-retry-dt", dest="retry_dt", action="store_false",
+                    help="do not repeat a run stopped by the instability guard with dt / 2")
     ap.add_argument("--snapshot", action="store_true",
                     help="copy the binary's decks to a temporary folder first, so edits during a "
                          "long sweep cannot change it")
@@ -136,6 +152,11 @@ def main():
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     path = a.out + ".csv"
     rows = load(path)
+    if rows and list(rows[0].keys()) != FIELDS:  # a file from an older version: new columns
+        with open(path, "w", newline="") as fh:
+            w = csv.DictWriter(fh, FIELDS, extrasaction="ignore")
+            w.writeheader()
+            w.writerows(rows)
     if a.retry_failed:
         rows = [r for r in rows if r["status"] == "ok"]
         with open(path, "w", newline="") as fh:

@@ -130,11 +130,13 @@ class BendHysteresisBond : public ChainBondStyle {
     if (delta_ > 0) {
       const double xe = xp - delta_, xem = xm + delta_, c = (Ke - Kh) / (2 * delta_);
       if (x > xe) {
-        g -= c * (x - xe) * (x - xe);
-        cubic = -c * std::pow(x - xe, 3) / 3.0;
+        const double y = x - xe;  // (std::pow here cost 12 % of a crumpling run)
+        g -= c * y * y;
+        cubic = -c * y * y * y / 3.0;
       } else if (x < xem) {
-        g += c * (x - xem) * (x - xem);
-        cubic = c * std::pow(x - xem, 3) / 3.0;
+        const double y = x - xem;
+        g += c * y * y;
+        cubic = c * y * y * y / 3.0;
       }
     }
     const double M = g + Kh * kpl;

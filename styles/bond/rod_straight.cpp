@@ -13,15 +13,6 @@
 
 namespace slender {
 
-namespace {
-// [e]: the matrix of v -> e x v
-Eigen::Matrix3d skew(const Vec3& e) {
-  Eigen::Matrix3d m;
-  m << 0, -e.z(), e.y(), e.z(), 0, -e.x(), -e.y(), e.x(), 0;
-  return m;
-}
-}  // namespace
-
 class StraightRodBond : public ChainBondStyle {
  public:
   static ParamSpec spec(const std::string& name) {
@@ -63,16 +54,16 @@ class StraightRodBond : public ChainBondStyle {
         const double D = n0 * n1 + e0.dot(e1);
         if (!(D > 1e-12 * n0 * n1)) continue;  // a fully folded hinge has no binormal
         const Vec3 kb = 2.0 * e0.cross(e1) / D;
-        const double e_hinge = yi_ * kb.squaredNorm() / l;
+        const double e_hinge = yi_ * kb.squaredNorm() / l;  // (4.4)
         energy += e_hinge;
         if (node_energy_) (*node_energy_)[m] = e_hinge;
-        // exact gradients (§3.3); F_k = -(2 YI / l) (grad_k kb)^T kb
-        const Vec3 t0 = e0 / n0, t1 = e1 / n1;
-        const Eigen::Matrix3d ga = (2.0 * skew(e1) + kb * (e1 + n1 * t0).transpose()) / D;
-        const Eigen::Matrix3d gb = (2.0 * skew(e0) - kb * (e0 + n0 * t1).transpose()) / D;
-        const double s = 2.0 * yi_ / l;
-        const Vec3 fa = -s * (ga.transpose() * kb);
-        const Vec3 fb = -s * (gb.transpose() * kb);
+        // exact gradients (§3.3); F_k = -(2 YI / l) (grad_k kb)^T kb. With [e]^T = -[e]:
+        // (grad_{i-1} kb)^T kb = (2 kb x e1 + |kb|^2 (e1 + |e1| t0)) / D and
+        // (grad_{i+1} kb)^T kb = (2 kb x e0 - |kb|^2 (e0 + |e0| t1)) / D
+        const double kb2 = kb.squaredNorm();
+        const double s = 2.0 * yi_ / (l * D);
+        const Vec3 fa = -s * (2.0 * kb.cross(e1) + kb2 * (e1 + (n1 / n0) * e0));
+        const Vec3 fb = -s * (2.0 * kb.cross(e0) - kb2 * (e0 + (n0 / n1) * e1));
         f[a] += fa;
         f[b] += fb;
         f[m] -= fa + fb;

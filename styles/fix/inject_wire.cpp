@@ -280,8 +280,9 @@ class WireInjectionFix : public FixStyle {
     auto& x = sim.nodes().x;
     double length = 0.0;
     inside_ = 0;
+    const double r2 = r_ * r_;  // squared distances: this runs every step over the wire
     auto inside = [&](const Vec3& p) {
-      return (dim_ == 2 ? (p - c_).head<2>().norm() : (p - c_).norm()) < r_;
+      return (dim_ == 2 ? (p - c_).head<2>().squaredNorm() : (p - c_).squaredNorm()) < r2;
     };
     for (int e = 0; e < c->n_edges(); ++e)
       if (inside(0.5 * (x[c->edge_tail(e)] + x[c->edge_head(e)]))) length += c->rest_length[e];

@@ -60,31 +60,42 @@ class GearIntegrator : public IntegratorStyle {
   }
 
   void step(Simulation& sim) override {
+    // the value count is a template parameter so that the sweeps below unroll
+    if (q_ == 4) return step_q<4>(sim);
+    if (q_ == 5) return step_q<5>(sim);
+    return step_q<6>(sim);
+  }
+  template <int Q>
+  void step_q(Simulation& sim) {
     auto& n = sim.nodes();
     const double h = sim.dt;
     const size_t N = n.n_owned();
+    std::array<Vec3*, Q> rk{};
+    for (int k = 2; k < Q; ++k) rk[k] = r_[k]->values().data();
     // predict: r_k <- sum_{m>=k} C(m,k) r_m, done in place (Horner-like sweeps)
     for (size_t i = 0; i < N; ++i) {
-      std::array<Vec3, 6> r;
+      std::array<Vec3, Q> r;
       r[0] = n.x[i];
       r[1] = h * n.v[i];
-      for (int k = 2; k < q_; ++k) r[k] = (*r_[k])[i];
-      for (int j = 0; j < q_ - 1; ++j)
-        for (int k = q_ - 2; k >= j; --k) r[k] += r[k + 1];
+      for (int k = 2; k < Q; ++k) r[k] = rk[k][i];
+      for (int j = 0; j < Q - 1; ++j)
+        for (int k = Q - 2; k >= j; --k) r[k] += r[k + 1];
       n.x[i] = r[0];
       n.v[i] = r[1] / h;
-      for (int k = 2; k < q_; ++k) (*r_[k])[i] = r[k];
+      for (int k = 2; k < Q; ++k) rk[k][i] = r[k];
     }
     sim.compute_forces();
+    for (int k = 2; k < Q; ++k) rk[k] = r_[k]->values().data();  // in case storage moved
     const double half_h2 = 0.5 * h * h;
     for (size_t i = 0; i < N; ++i) {
-      const Vec3 delta = (half_h2 / n.mass[i]) * n.f[i] - (*r_[2])[i];
+      const Vec3 delta = (half_h2 / n.mass[i]) * n.f[i] - rk[2][i];
       n.x[i] += c_[0] * delta;
       n.v[i] += (c_[1] / h) * delta;
-      for (int k = 2; k < q_; ++k) (*r_[k])[i] += c_[k] * delta;
+      for (int k = 2; k < Q; ++k) rk[k][i] += c_[k] * delta;
     }
     sim.end_of_step();
   }
+
   void save_state(StateMap& st) const override {
     st["gear"] = {initialized_ ? 1.0 : 0.0, h_, static_cast<double>(epoch_)};
   }

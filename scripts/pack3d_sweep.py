@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""Maximum packing fraction against a/R for the 3D packing decks (MODELS.md §5.4):
+runs examples/pack3d/<setup>.lua for each sphere radius R and seed until the stop
+force, and writes <out>.csv (one row per run, appended at once, so an interrupted
+sweep resumes where it stopped) and <out>.png (phi_max against a/R with a power-law
+fit phi_max = A (a/R)^p per setup, fitted on the seed means).
+
+  /usr/bin/python3 scripts/pack3d_sweep.py --setups low_torsion --R 4 5 10 13 20 --seeds 1 2 3
+"""
+import argparse
+import concurrent.futures as cf
+import csv
+import math
+import os
+import subprocess
+import tempfile
+import threading
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+FIELDS = ["setup", "R", "a_over_R", "seed", "phi", "stopped", "force_R2_over_YI", "bend_R_over_YI",
+          "rg_over_R", "stretch_over_bend", "contacts", "nodes", "steps", "wall_s", "node_steps_per_s",
+          "status", "error"]
+
+
+def run_one(a, setup, R, seed):
+    args = [a.slender, "-q", os.path.join(a.examples, "pack3d", setup + ".lua"), "-v", f"R={R}",
+            "-v", f"seed={seed}", "-v", "output=false"] + sum((["-v", v] for v in a.var), [])
+    with tempfile.TemporaryDirectory() as tmp:
+        try:
+            p = subprocess.run(args, cwd=tmp, capture_output=True, text=True, timeout=a.timeout)
+            rc, out, err = p.returncode, p.stdout, p.stderr
+        except subprocess.TimeoutExpired:
+            rc, out, err = -1, "", f"timeout after {a.timeout} s"
+    row = {"setup": setup, "R": R, "a_over_R": 1.0 / R, "seed": seed}
+    res = {}
+    for line in out.splitlines():
+        if line.startswith("RESULT"):
+            res = dict(kv.partition("=")[::2] for kv in line.split()[1:])
+    if rc == 0 and res:
+        for k in FIELDS:
+            if k in res:
+                row[k] = res[k]
+        row["status"] = "ok"
+    else:
+        row["status"] = "failed"
+        row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+    return row
+
+
+def load(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as fh:
+        return list(csv.DictReader(fh))
+
+
+def fit_power(x, y):
+    b, c = np.polyfit(np.log(x), np.log(y), 1)
+    return math.exp(c), b
+
+
+def draw(rows, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    summary = []
+    for setup in sorted({r["setup"] for r in rows}):
+        ok = [r for r in rows if r["setup"] == setup and r["status"] == "ok"]
+        if not ok:
+            continue
+        Rs = sorted({float(r["R"]) for r in ok})
+        mean = [np.mean([float(r["phi"]) for r in ok if float(r["R"]) == R]) for R in Rs]
+        std = [np.std([float(r["phi"]) for r in ok if float(r["R"]) == R]) for R in Rs]
+        x = 1.0 / np.array(Rs)
+        ax.errorbar(x, mean, yerr=std, fmt="o", label=setup)
+        if len(Rs) >= 3:
+            A, p = fit_power(x, np.array(mean))
+            xs = np.geomspace(x.min(), x.max(), 50)
+            ax.plot(xs, A * xs ** p, "-", label=f"{setup}: {A:.3g} (a/R)^{p:.2f}")
+            summary.append((setup, A, p))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("a / R")
+    ax.set_ylabel("phi_max")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out + ".png", dpi=120)
+    plt.close(fig)
+    return summary
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
+    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
+    ap.add_argument("--setups", nargs="+", default=["low_torsion"])
+    ap.add_argument("--R", type=float, nargs="+", default=[4, 5, 10, 13, 20])
+    ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    ap.add_argument("--jobs", type=int, default=max(1, os.cpu_count() or 2))
+    ap.add_argument("--timeout", type=float, default=None)
+    ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
+                    help="extra -v override for every run (repeatable)")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "pack3d", "phi_max"))
+    a = ap.parse_args()
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
+    path = a.out + ".csv"
+    rows = load(path)
+    done = {(r["setup"], float(r["R"]), int(r["seed"])) for r in rows if r["status"] == "ok"}
+    todo = [(s, R, k) for s in a.setups for R in a.R for k in a.seeds if (s, R, k) not in done]
+    print(f"{len(done)} runs done, {len(todo)} to go -> {path}", flush=True)
+    if not os.path.exists(path):
+        with open(path, "w", newline="") as fh:
+            csv.DictWriter(fh, FIELDS).writeheader()
+    lock = threading.Lock()
+
+    def job(t):
+        row = run_one(a, *t)
+        with lock:
+            with open(path, "a", newline="") as fh:
+                csv.DictWriter(fh, FIELDS).writerow(row)
+            print(f"{t[0]} R {t[1]:g} seed {t[2]}: {row['status']} phi {row.get('phi', '')} "
+                  f"wall {row.get('wall_s', '')} s", flush=True)
+        return row
+
+    with cf.ThreadPoolExecutor(a.jobs) as ex:
+        list(ex.map(job, todo))
+    for setup, A, p in draw(load(path), a.out):
+        print(f"{setup}: phi_max = {A:.4g} (a/R)^{p:.3f}")
+    print("wrote", a.out + ".png")
+
+
+if __name__ == "__main__":
+    main()

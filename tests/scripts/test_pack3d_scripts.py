@@ -1,0 +1,35 @@
+#!/usr/bin/env python3
+"""Checks the inverse-spool (Purohit) model of scripts/pack3d_stats.py against the
+constants of MODELS.md §5.4 / §7.1 (A-4) and its limits, and the log-normal fit."""
+import math
+import os
+import sys
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import pack3d_stats  # noqa: E402
+
+
+def main():
+    phi = np.array([1e-6, 0.2, 0.4, 0.45940, 0.46])
+    k, eb, f, rg2 = pack3d_stats.purohit(phi, R=10.0, ds=2.81)
+    assert abs(k - 1.6796) < 1e-4, k                        # A-4
+    assert abs(k ** -1.5 - 0.4594) < 1e-4                   # the model's end
+    assert abs(f[0] - 0.5) < 1e-3 and abs(rg2[0] - 1) < 1e-3  # empty sphere
+    assert np.isnan(eb[-1]) and np.isnan(f[-1])              # past the end
+    assert abs(rg2[3] - 0.6) < 1e-3                         # full: the solid-sphere 3/5
+    assert eb[1] < eb[2] and f[1] < f[2]
+    # E_b = 4 pi YI R / (sqrt 3 d_s^2) (artanh x - x): E_b R / YI at phi = 0.2, R = 10
+    x = math.sqrt(k) * 0.2 ** (1 / 3)
+    assert abs(eb[1] - 4 * math.pi * 100 / (math.sqrt(3) * 2.81 ** 2) * (math.atanh(x) - x)) < 1e-9
+    # log-normal fit recovers mu and sigma of a sample
+    rng = np.random.default_rng(1)
+    mu, sigma, ks = pack3d_stats.lognormal_fit(np.exp(rng.normal(-0.3, 0.8, 20000)))
+    assert abs(mu + 0.3) < 0.02 and abs(sigma - 0.8) < 0.02 and ks < 0.02, (mu, sigma, ks)
+    print("pack3d scripts: ok")
+
+
+if __name__ == "__main__":
+    main()

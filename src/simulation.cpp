@@ -222,9 +222,27 @@ void Simulation::build_schedule() {
   schedule_dirty_ = false;
 }
 
+Coordinates& Simulation::coordinates(const std::string& name) {
+  for (auto& c : coords_)
+    if (c->name == name) return *c;
+  auto c = std::make_unique<Coordinates>();
+  c->name = name;
+  c->q = &nodes_.require<Vec4>(name, Vec4(1, 0, 0, 0));
+  c->v = &nodes_.require<Vec4>(name + ".v", Vec4::Zero());
+  c->f = &nodes_.require<Vec4>(name + ".f", Vec4::Zero());  // verlet kicks with it
+  c->m = &nodes_.require<double>(name + ".m", 1.0);
+  c->fixed = &nodes_.require<int>(name + ".fixed", 0);
+  coords_.push_back(std::move(c));
+  schedule_dirty_ = true;
+  if (integrator_) integrator_->coordinates_added(*this);
+  return *coords_.back();
+}
+
 void Simulation::compute_forces() {
   if (schedule_dirty_) build_schedule();
   for (auto& f : nodes_.f) f.setZero();
+  for (auto& c : coords_)
+    for (auto& f : c->f->values()) f.setZero();
   for (auto& [k, e] : energy_) e = 0.0;
   for (auto& b : bonds_) energy_[b->energy_category()] += b->compute(*this);
   for (auto& p : pairs_) energy_["contact"] += p->compute(*this);
@@ -240,6 +258,18 @@ void Simulation::compute_forces() {
   }
   if (dim_ == 2)
     for (auto& f : nodes_.f) f.z() = 0.0;
+  for (auto& c : coords_) {
+    auto& f = c->f->values();
+    auto& q = c->q->values();
+    auto& fixed = c->fixed->values();
+    for (size_t i = 0; i < f.size(); ++i) {
+      if (fixed[i]) {
+        f[i].setZero();
+      } else if (c->unit) {
+        f[i] -= (f[i].dot(q[i]) / q[i].squaredNorm()) * q[i];  // tangent to |q| = 1
+      }
+    }
+  }
   forces_valid = true;
 }
 
@@ -251,6 +281,9 @@ double Simulation::kinetic_energy() const {
   double ke = 0.0;
   for (size_t i = 0; i < nodes_.n_owned(); ++i)
     ke += 0.5 * nodes_.mass[i] * nodes_.v[i].squaredNorm();
+  // rotations: 2 I_r |dq/dt|^2 = 1/2 m_q |dq/dt|^2 with m_q = 4 I_r (MODELS.md §4.4)
+  for (auto& c : coords_)
+    for (size_t i = 0; i < nodes_.n_owned(); ++i) ke += 0.5 * (*c->m)[i] * (*c->v)[i].squaredNorm();
   return ke;
 }
 double Simulation::potential_energy() const {
@@ -355,6 +388,12 @@ void Simulation::setup_run() {
   }
   good_x_ = nodes_.x;
   good_v_ = nodes_.v;
+  good_q_.clear();
+  good_qv_.clear();
+  for (auto& c : coords_) {
+    good_q_.push_back(c->q->values());
+    good_qv_.push_back(c->v->values());
+  }
   good_step_ = step;
   good_time_ = time;
   energy_scale_ = std::max(energy_scale_, kinetic_energy() + std::abs(potential_energy()));
@@ -385,6 +424,10 @@ void Simulation::fail(const std::string& what, long bad_step) {
   if (good_step_ >= 0) {
     nodes_.x = good_x_;
     nodes_.v = good_v_;
+    for (size_t k = 0; k < coords_.size() && k < good_q_.size(); ++k) {
+      coords_[k]->q->values() = good_q_[k];
+      coords_[k]->v->values() = good_qv_[k];
+    }
     step = good_step_;
     time = good_time_;
     for (auto& f : nodes_.f) f.setZero();
@@ -472,6 +515,12 @@ void Simulation::check_guard(long) {
   energy_scale_ = std::max(energy_scale_, ke + pe);
   good_x_ = nodes_.x;
   good_v_ = nodes_.v;
+  good_q_.clear();
+  good_qv_.clear();
+  for (auto& c : coords_) {
+    good_q_.push_back(c->q->values());
+    good_qv_.push_back(c->v->values());
+  }
   good_step_ = step;
   good_time_ = time;
 }

@@ -41,6 +41,28 @@ struct ThermoOptions {
   double progress_seconds = 5.0;
 };
 
+// Generalised coordinates integrated besides the node positions: four components
+// per node (the edge quaternions of a Cosserat rod, MODELS.md §4.4) with their
+// velocities, generalised forces and scalar masses. A unit set stays on |q| = 1:
+// its forces are projected onto the tangent space and the integrators renormalise
+// q and remove the radial part of its derivatives after every step.
+struct Coordinates {
+  std::string name;
+  Property<Vec4>* q = nullptr;
+  Property<Vec4>* v = nullptr;
+  Property<Vec4>* f = nullptr;
+  Property<double>* m = nullptr;
+  Property<int>* fixed = nullptr;  // nonzero: prescribed (not integrated, zero force)
+  bool unit = true;
+  // back onto |q| = 1 after an update; the derivatives lose their radial part
+  void constrain(std::size_t i, std::initializer_list<Vec4*> derivs) const {
+    Vec4& qi = (*q)[i];
+    qi.normalize();
+    for (Vec4* d : derivs)
+      if (d) *d -= d->dot(qi) * qi;
+  }
+};
+
 struct RunOptions {
   long steps = 0;
   long every = 0;                             // callback interval
@@ -115,6 +137,12 @@ class Simulation {
   GuardOptions guard;
   ThermoOptions thermo;
 
+  // --- generalised coordinates (created on first request, stable references)
+  Coordinates& coordinates(const std::string& name);
+  const std::vector<std::unique_ptr<Coordinates>>& extra_coordinates() const { return coords_; }
+  // Styles that compute several kinds of energy add the others here during compute().
+  void add_energy(const std::string& category, double e) { energy_[category] += e; }
+
   // --- observables
   double kinetic_energy() const;
   double potential_energy() const;
@@ -163,6 +191,8 @@ class Simulation {
   bool schedule_dirty_ = true;
   std::string stop_reason_, last_stop_;
   std::map<std::string, double> energy_;
+  std::vector<std::unique_ptr<Coordinates>> coords_;
+  std::vector<std::vector<Vec4>> good_q_, good_qv_;
   std::ofstream thermo_csv_;
   bool thermo_header_written_ = false;
   // guard state

@@ -101,6 +101,9 @@ class IntegratorStyle : public Style {
   // Prepares state (e.g. higher derivatives) before the first step of a run.
   virtual void setup(Simulation& sim) = 0;
   virtual void step(Simulation& sim) = 0;
+  // A style added generalised coordinates (Simulation::coordinates): an integrator
+  // with history arrays allocates them now, so that checkpoints find them.
+  virtual void coordinates_added(Simulation&) {}
   // Largest omega*dt for which the scheme is stable on an undamped oscillator.
   virtual double stability_limit() const = 0;
   // Requested time step, or <= 0 for "auto".

@@ -44,6 +44,12 @@ class WireInjectionFix : public FixStyle {
            "to hold the wire (the force protocol of MODELS.md §2.4)")
         .required()
         .nonnegative();
+    s.string("rotation",
+             "a rod with frames (rod/cosserat): free = spin about the axis free in the channel "
+             "(low torsion), held = the channel edges' frames are prescribed (high torsion, "
+             "MODELS.md §4.5)")
+        .def(std::string("free"))
+        .choices({"free", "held"});
     s.real("diameter",
            "wire diameter d = 2a, for the packing density d L / (pi r^2) in 2D and "
            "L pi a^2 / (4/3 pi r^3) in 3D")
@@ -71,7 +77,8 @@ class WireInjectionFix : public FixStyle {
         window_(p.integer("jam_window")),
         growth_(p.real("jam_growth")),
         dphi_(p.real("jam_dphi")),
-        max_phi_(p.real("max_phi")) {
+        max_phi_(p.real("max_phi")),
+        hold_rotation_(p.str("rotation") == "held") {
     dim_ = sim.dimension();
     Chain* c = sim.topology().find(chain_);
     if (!c) throw InputError("fix style 'inject/wire': unknown chain '" + chain_ + "'");
@@ -112,6 +119,14 @@ class WireInjectionFix : public FixStyle {
   unsigned stages() const override { return kSetup | kPostForce | kMeasure | kEndOfStep; }
   void setup(Simulation& sim) override {
     mask_ = sim.nodes().find<int>("dof_mask");
+    if (hold_rotation_) {
+      held_ = sim.nodes().find<int>("rod.q.fixed");
+      if (!held_)
+        throw InputError(
+            "fix style 'inject/wire': rotation = \"held\" needs a rod with frames "
+            "(bond rod/cosserat)");
+      for (int i : driven_) (*held_)[i] = 1;
+    }
     // a changed feed speed (sim:modify) applies to the nodes already in the channels
     for (int i : driven_) sim.nodes().v[i] = v_ * driving(sim.nodes().x[i]).u;
   }
@@ -144,6 +159,7 @@ class WireInjectionFix : public FixStyle {
       const int i = driven_[k];
       if (!in_channel(x[i])) {
         (*mask_)[i] = 0;
+        if (held_) (*held_)[i] = 0;
         driven_[k] = driven_.back();
         driven_.pop_back();
       } else {
@@ -270,6 +286,10 @@ class WireInjectionFix : public FixStyle {
   }
   void drive(Simulation& sim, int i) {
     (*mask_)[i] = 7;
+    if (hold_rotation_) {
+      held_ = sim.nodes().find<int>("rod.q.fixed");
+      if (held_) (*held_)[i] = 1;
+    }
     driven_.push_back(i);
     const Channel& k = driving(sim.nodes().x[i]);
     sim.nodes().v[i] = v_ * k.u;
@@ -300,6 +320,8 @@ class WireInjectionFix : public FixStyle {
   int dim_ = 2;
   long window_;
   double growth_, dphi_, max_phi_;
+  bool hold_rotation_ = false;
+  Property<int>* held_ = nullptr;  // rod.q.fixed: the frames the channel prescribes
   std::vector<Channel> channels_;
   std::vector<int> driven_;  // nodes this fix moves kinematically
   Property<int>* mask_ = nullptr;

@@ -36,6 +36,10 @@ class FireIntegrator : public IntegratorStyle {
   }
   double stability_limit() const override { return 2.0; }
   void setup(Simulation& sim) override {
+    if (!sim.extra_coordinates().empty())
+      throw InputError("integrator 'fire' (and sim:minimize) does not move the rod quaternions ('" +
+                       sim.extra_coordinates().front()->name +
+                       "'); use verlet or gear with damping to relax such a scene");
     if (initialized_) {
       sim.dt = h_;
       return;

@@ -32,13 +32,16 @@ class GearIntegrator : public IntegratorStyle {
     for (int k = 0; k < q_; ++k) c_[k] = c[k];
     for (int k = 2; k < q_; ++k)
       r_[k] = &sim.nodes().require<Vec3>("gear.r" + std::to_string(k), Vec3::Zero());
+    bind_extra(sim);
   }
+  void coordinates_added(Simulation& sim) override { bind_extra(sim); }
   // Largest omega dt with |amplification| <= 1 on an undamped oscillator,
   // measured by tests/unit/test_integrators.cpp.
   double stability_limit() const override { return q_ == 4 ? 1.41 : q_ == 5 ? 0.42 : 0.48; }
 
   void setup(Simulation& sim) override {
     auto& n = sim.nodes();
+    bind_extra(sim);
     if (initialized_ && epoch_ == sim.state_epoch && h_ == sim.dt) return;
     if (initialized_ && epoch_ == sim.state_epoch && h_ != sim.dt) {
       // keep the history, rescale the Nordsieck vector to the new step
@@ -46,6 +49,8 @@ class GearIntegrator : public IntegratorStyle {
       for (int k = 2; k < q_; ++k) {
         const double sk = std::pow(s, k);
         for (auto& v : r_[k]->values()) v *= sk;
+        for (auto& xr : xr_)
+          for (auto& v : xr[k]->values()) v *= sk;
       }
     } else {
       // start from rest history: r2 from the current forces, higher derivatives zero
@@ -53,6 +58,12 @@ class GearIntegrator : public IntegratorStyle {
         (*r_[2])[i] = (0.5 * sim.dt * sim.dt / n.mass[i]) * n.f[i];
         for (int k = 3; k < q_; ++k) (*r_[k])[i].setZero();
       }
+      auto& cs = sim.extra_coordinates();
+      for (size_t s = 0; s < cs.size(); ++s)
+        for (size_t i = 0; i < n.size(); ++i) {
+          (*xr_[s][2])[i] = (0.5 * sim.dt * sim.dt / (*cs[s]->m)[i]) * (*cs[s]->f)[i];
+          for (int k = 3; k < q_; ++k) (*xr_[s][k])[i].setZero();
+        }
     }
     h_ = sim.dt;
     epoch_ = sim.state_epoch;
@@ -84,6 +95,7 @@ class GearIntegrator : public IntegratorStyle {
       n.v[i] = r[1] / h;
       for (int k = 2; k < Q; ++k) rk[k][i] = r[k];
     }
+    predict_extra<Q>(sim);
     sim.compute_forces();
     for (int k = 2; k < Q; ++k) rk[k] = r_[k]->values().data();  // in case storage moved
     const double half_h2 = 0.5 * h * h;
@@ -93,7 +105,64 @@ class GearIntegrator : public IntegratorStyle {
       n.v[i] += (c_[1] / h) * delta;
       for (int k = 2; k < Q; ++k) rk[k][i] += c_[k] * delta;
     }
+    correct_extra<Q>(sim);
     sim.end_of_step();
+  }
+
+  // Generalised coordinates (rod quaternions): their own Nordsieck arrays.
+  void bind_extra(Simulation& sim) {
+    xr_.clear();
+    for (auto& c : sim.extra_coordinates()) {
+      std::array<Property<Vec4>*, 6> a{};
+      for (int k = 2; k < q_; ++k)
+        a[k] =
+            &sim.nodes().require<Vec4>("gear." + c->name + ".r" + std::to_string(k), Vec4::Zero());
+      xr_.push_back(a);
+    }
+  }
+  template <int Q>
+  void predict_extra(Simulation& sim) {
+    const double h = sim.dt;
+    auto& cs = sim.extra_coordinates();
+    if (xr_.size() != cs.size()) bind_extra(sim);
+    const size_t N = sim.nodes().n_owned();
+    for (size_t s = 0; s < cs.size(); ++s) {
+      const Coordinates& c = *cs[s];
+      for (size_t i = 0; i < N; ++i) {
+        if ((*c.fixed)[i]) continue;
+        std::array<Vec4, Q> r;
+        r[0] = (*c.q)[i];
+        r[1] = h * (*c.v)[i];
+        for (int k = 2; k < Q; ++k) r[k] = (*xr_[s][k])[i];
+        for (int j = 0; j < Q - 1; ++j)
+          for (int k = Q - 2; k >= j; --k) r[k] += r[k + 1];
+        (*c.q)[i] = r[0];
+        (*c.v)[i] = r[1] / h;
+        for (int k = 2; k < Q; ++k) (*xr_[s][k])[i] = r[k];
+      }
+    }
+  }
+  template <int Q>
+  void correct_extra(Simulation& sim) {
+    const double h = sim.dt, half_h2 = 0.5 * h * h;
+    auto& cs = sim.extra_coordinates();
+    const size_t N = sim.nodes().n_owned();
+    for (size_t s = 0; s < cs.size(); ++s) {
+      const Coordinates& c = *cs[s];
+      for (size_t i = 0; i < N; ++i) {
+        if ((*c.fixed)[i]) continue;
+        const Vec4 delta = (half_h2 / (*c.m)[i]) * (*c.f)[i] - (*xr_[s][2])[i];
+        (*c.q)[i] += c_[0] * delta;
+        (*c.v)[i] += (c_[1] / h) * delta;
+        for (int k = 2; k < Q; ++k) (*xr_[s][k])[i] += c_[k] * delta;
+        if (c.unit) {
+          std::array<Vec4*, 6> d{};
+          d[0] = &(*c.v)[i];
+          for (int k = 2; k < Q; ++k) d[k - 1] = &(*xr_[s][k])[i];
+          c.constrain(i, {d[0], d[1], d[2], d[3], d[4]});
+        }
+      }
+    }
   }
 
   void save_state(StateMap& st) const override {
@@ -110,6 +179,7 @@ class GearIntegrator : public IntegratorStyle {
   int q_;
   std::array<double, 6> c_{};
   std::array<Property<Vec3>*, 6> r_{};
+  std::vector<std::array<Property<Vec4>*, 6>> xr_;
   bool initialized_ = false;
   double h_ = 0.0;
   long epoch_ = -1;

@@ -22,8 +22,24 @@ class VelocityVerletIntegrator : public IntegratorStyle {
       n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
       n.x[i] += h * n.v[i];
     }
+    // generalised coordinates (rod quaternions) the same way, then back onto |q| = 1
+    for (auto& c : sim.extra_coordinates())
+      for (size_t i = 0; i < N; ++i) {
+        if ((*c->fixed)[i]) continue;
+        Vec4& v = (*c->v)[i];
+        v += (0.5 * h / (*c->m)[i]) * (*c->f)[i];
+        (*c->q)[i] += h * v;
+        if (c->unit) c->constrain(i, {&v});
+      }
     sim.compute_forces();
     for (size_t i = 0; i < N; ++i) n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
+    for (auto& c : sim.extra_coordinates())
+      for (size_t i = 0; i < N; ++i) {
+        if ((*c->fixed)[i]) continue;
+        Vec4& v = (*c->v)[i];
+        v += (0.5 * h / (*c->m)[i]) * (*c->f)[i];
+        if (c->unit) v -= v.dot((*c->q)[i]) * (*c->q)[i];
+      }
     sim.end_of_step();
   }
 };

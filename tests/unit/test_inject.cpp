@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "helpers.hpp"
+#include "quaternion_rod.hpp"
 
 using namespace slender;
 using namespace slender::test;
@@ -162,4 +163,41 @@ TEST(WireInjectionFix, NozzleFeedsA3dWireAlongItsAxis) {
                               {"speed", v},
                               {"channels", std::string("nozzle")}})),
                InputError);
+}
+
+TEST(WireInjectionFix, NozzleHoldsTheFramesOfACosseratRodOnlyWhenAsked) {
+  for (const char* rotation : {"free", "held"}) {
+    Simulation sim(3, 1);
+    sim.verbose = false;
+    const double R = 6.0;
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 6; ++i) pts.emplace_back(0.01 * (i % 2), 0, R + 2.0 - i);
+    sim.add_chain("wire", pts, 1.0, false);
+    sim.add_bond("spring", P({{"k", 1000.0}}));
+    sim.add_bond("rod/cosserat", P({{"YI", 60.0},
+                                    {"GJ", 40.0},
+                                    {"coupling", 1000.0},
+                                    {"rot_inertia", 1.0},
+                                    {"rest_curvature", std::vector<double>{0, 0.1, 0}}}));
+    sim.add_fix("feed", "inject/wire",
+                P({{"chain", std::string("wire")},
+                   {"radius", R},
+                   {"speed", 0.2},
+                   {"channels", std::string("nozzle")},
+                   {"rotation", std::string(rotation)},
+                   {"center", std::vector<double>{0, 0, 0}}}));
+    sim.set_integrator("gear", P({{"dt", 0.002}, {"values", 6.0}}));
+    sim.run(RunOptions{5000, 0, {}});
+    const Chain& c = sim.topology().chains[0];
+    const auto& fixed = sim.coordinates("rod.q").fixed->values();
+    const auto& q = sim.coordinates("rod.q").q->values();
+    // the first (outermost) edge is in the nozzle; new edges are born from it
+    const int outer = c.nodes.front();
+    EXPECT_GT(sim.nodes().x[outer].z(), R);
+    EXPECT_EQ(fixed[outer], std::string(rotation) == "held" ? 1 : 0) << rotation;
+    EXPECT_LT((qrod::d3(q[outer]) - Vec3(0, 0, -1)).norm(), 2e-2)
+        << rotation;  // MODELS.md: |t - d3| < 1e-2
+    // edges inside the sphere are free in both setups
+    EXPECT_EQ(fixed[c.nodes[c.n_nodes() - 2]], 0);
+  }
 }

@@ -46,7 +46,7 @@ function M.build(p)
                                      stick_stiffness = 0.1 * estar })
   sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(YA / l0 * m) })
   sim:fix("feed", "inject/wire", { chain = "rod", radius = R, center = { 0, 0, 0 }, channels = "nozzle",
-    direction = { 0, 0, -1 }, speed = speed, diameter = 2 * a,
+    direction = { 0, 0, -1 }, speed = speed, diameter = 2 * a, rotation = p.rotation or "free",
     jam_force = slender.var("stop_force", math.max(0.01 * YA, 20 * YI / R ^ 2)), jam_window = 1000,
     max_phi = slender.var("max_phi", 1.0) })
   sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
@@ -54,8 +54,8 @@ function M.build(p)
   sim:compute("gyr", "gyration", { group = "rod", inside = R })
   sim:thermo { every = slender.var("thermo_every", 10000), file = name .. "_thermo.csv",
     columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/segment.contacts",
-                "sphere.contacts", "energy.bend", "energy.stretch", "energy.contact", "gyr.rg", "ke",
-                "count.nodes" } }
+                "sphere.contacts", "energy.bend", "energy.stretch", "energy.contact", "energy.twist",
+                "gyr.rg", "ke", "count.nodes" } }
   if output then
     sim:dump("traj", "h5md", { file = name .. ".h5", every = slender.var("dump_every", 50000),
                                fields = { "position", "bend.energy" } })
@@ -75,6 +75,7 @@ function M.run(p)
     speed = ctx.speed, phi = sim:value("feed.phi"), stopped = sim:value("feed.jammed"),
     force_R2_over_YI = sim:value("feed.force_avg") * R * R / YI,
     bend_R_over_YI = sim:value("energy.bend") * R / YI,
+    twist_R_over_YI = sim:value("energy.twist") * R / YI,
     -- a large stretch/bend ratio flags a rod compressed by the feed, not packed
     stretch_over_bend = sim:value("energy.stretch") / math.max(sim:value("energy.bend"), 1e-300),
     rg_over_R = sim:value("gyr.rg") / R,

@@ -1,0 +1,161 @@
+// Quaternion Cosserat rod (MODELS.md §4, after Spillmann & Teschner): besides the
+// node positions, one unit quaternion per edge (stored at the edge's first node,
+// generalised coordinates "rod.q" integrated by verlet or gear) gives the material
+// frame. Energies: bending and torsion from the discrete Darboux vector against the
+// rest value kbar (§4.3), and the penalty C/2 |e_rest| |t - d3|^2 tying d3 to the
+// edge tangent; stretching is the `spring` style. Rotational inertia: a quaternion
+// carries the scalar mass m_q = 4 I_r |e_rest| with I_r = rho J per length (§4.4).
+// A new edge (injection, or a chain's first binding) is born with its neighbour's
+// frame carried over onto its own tangent by the smallest rotation, so a growing
+// rod keeps its twist continuous.
+#include <cmath>
+
+#include "chain_select.hpp"
+#include "quaternion_rod.hpp"
+#include "registry.hpp"
+
+namespace slender {
+
+class CosseratRodBond : public ChainBondStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("bond", name,
+                "quaternion Cosserat rod: bending, torsion and intrinsic curvature from edge "
+                "quaternions, d3 tied to the tangent (MODELS.md §4)");
+    s.real("YI", "bending stiffness Y I").required().positive();
+    s.real("GJ", "torsional stiffness G J").required().positive();
+    s.real("coupling", "C: stiffness of the penalty tying d3 to the tangent (MODELS.md: C = YA)")
+        .required()
+        .positive();
+    s.vector("rest_curvature", "kbar = (k1, k2, k3): rest Darboux vector in the material frame")
+        .def(std::vector<double>{0, 0, 0})
+        .length(3, 3);
+    s.real("rot_inertia", "I_r: rotational inertia per length, rho J (MODELS.md §4.4)")
+        .required()
+        .positive();
+    s.real("inertia_scale", "multiplies m_q (quasi-static runs whose step it limits)")
+        .def(1.0)
+        .positive();
+    s.real("rot_damping", "gamma_q: generalised force -gamma_q dq/dt on every quaternion")
+        .def(0.0)
+        .nonnegative();
+    s.boolean("node_energy", "keep each vertex's bending energy in the node property bend.energy")
+        .def(false);
+    declare_chains(s);
+    return s;
+  }
+  CosseratRodBond(Simulation& sim, const ParamValues& p)
+      : ChainBondStyle(sim, p),
+        K_(p.real("YI"), p.real("YI"), p.real("GJ")),
+        C_(p.real("coupling")),
+        kbar_(p.vec3("rest_curvature")),
+        Ir_(p.real("rot_inertia") * p.real("inertia_scale")),
+        gamma_q_(p.real("rot_damping")),
+        coords_(&sim.coordinates("rod.q")) {
+    if (sim.dimension() != 3)
+      throw InputError("bond style 'rod/cosserat' needs a 3D simulation (dimension = 3)");
+    born_ = &sim.nodes().require<int>("rod.q.born", 0);
+    if (p.boolean("node_energy")) node_energy_ = &sim.nodes().require<double>("bend.energy", 0.0);
+  }
+  const char* energy_category() const override { return "bend"; }
+
+  double compute(Simulation& sim) override {
+    auto& x = sim.nodes().x;
+    auto& f = sim.nodes().f;
+    auto& q = coords_->q->values();
+    auto& fq = coords_->f->values();
+    double bend = 0.0, twist = 0.0, couple = 0.0;
+    if (node_energy_)
+      for (auto& e : node_energy_->values()) e = 0.0;
+    for (auto* c : chains(sim)) {
+      bind_edges(sim, *c);
+      const int ne = c->n_edges();
+      for (int e = 0; e < ne; ++e) {
+        const int a = c->edge_tail(e), b = c->edge_head(e);
+        couple += qrod::coupling(q[a], x[a], x[b], c->rest_length[e], C_, fq[a], f[a], f[b]);
+        if (gamma_q_ > 0) fq[a] -= gamma_q_ * (*coords_->v)[a];
+      }
+      // vertices between consecutive edges (all of them on a closed chain)
+      const int nv = c->closed ? ne : ne - 1;
+      for (int k = 0; k < nv; ++k) {
+        const int ea = k, eb = (k + 1) % ne;
+        const int qa = c->edge_tail(ea), qb = c->edge_tail(eb);
+        const double l = 0.5 * (c->rest_length[ea] + c->rest_length[eb]);
+        const auto h = qrod::hinge(q[qa], q[qb], l, K_, kbar_, fq[qa], fq[qb]);
+        bend += h.bend;
+        twist += h.twist;
+        if (node_energy_) (*node_energy_)[c->edge_head(ea)] = h.bend;
+      }
+    }
+    sim.add_energy("twist", twist);
+    sim.add_energy("coupling", couple);
+    return bend;
+  }
+
+  double max_frequency(const Simulation& sim) const override {
+    auto ch = select_chains(sim, names_);
+    if (ch.empty()) return 0.0;
+    const double l0 = min_rest(ch), m = min_mass(sim, ch);
+    const double mq = 4.0 * Ir_ * l0;
+    // the coupling moves nodes like a transverse spring C / l0, and turns a
+    // quaternion with stiffness ~ 4 C l0 (|J3| ~ 2); bending and torsion couple
+    // neighbouring quaternions with ~ 4 K / l0 each side (zig-zag: x 4)
+    const double wx = 2.0 * std::sqrt(C_ / (l0 * m));
+    const double wq2 = (4.0 * C_ * l0 + 16.0 * K_.maxCoeff() / l0) / mq;
+    return std::max(wx, 2.0 * std::sqrt(wq2));
+  }
+
+ private:
+  // Gives every edge of the chain its quaternion mass and, for an edge that has
+  // none yet, its frame; the node after an open chain's last edge carries no edge.
+  void bind_edges(Simulation& sim, const Chain& c) {
+    auto& x = sim.nodes().x;
+    auto& q = coords_->q->values();
+    auto& born = born_->values();
+    const int ne = c.n_edges();
+    // born: 1 = the edge has its frame; 2 = the slot of an open chain's last node,
+    // which has no edge (held still); 0 = a new edge
+    if (!c.closed) {
+      const int last = c.nodes.back();
+      (*coords_->fixed)[last] = 1;
+      born[last] = 2;
+    }
+    for (int e = 0; e < ne; ++e) {
+      const int a = c.edge_tail(e);
+      if (born[a] == 1) continue;
+      // a former last node now starts an edge: it moves; a new node keeps whatever
+      // a fix prescribed (a nozzle that holds the rotation)
+      if (born[a] == 2) (*coords_->fixed)[a] = 0;
+      const Vec3 t = (x[c.edge_head(e)] - x[a]).normalized();
+      // the nearest edge with a frame, before or after this one
+      int from = -1;
+      if (e > 0 && born[c.edge_tail(e - 1)] == 1) from = e - 1;
+      if (from < 0 && e + 1 < ne && born[c.edge_tail(e + 1)] == 1) from = e + 1;
+      if (from >= 0) {
+        const int n = c.edge_tail(from);
+        const Vec3 tn = (x[c.edge_head(from)] - x[n]).normalized();
+        const Eigen::Quaterniond r = Eigen::Quaterniond::FromTwoVectors(tn, t);
+        q[a] = qrod::mul(qrod::Quat(r.w(), r.x(), r.y(), r.z()), q[n]);
+        if (q[a].dot(q[n]) < 0) q[a] = -q[a];  // same hemisphere as the neighbour
+      } else {
+        q[a] = qrod::aligned_with(t);
+      }
+      q[a].normalize();
+      (*coords_->v)[a].setZero();
+      (*coords_->m)[a] = 4.0 * Ir_ * c.rest_length[e];
+      born[a] = 1;
+    }
+  }
+
+  Vec3 K_;
+  double C_;
+  Vec3 kbar_;
+  double Ir_, gamma_q_;
+  Coordinates* coords_;
+  Property<int>* born_ = nullptr;
+  Property<double>* node_energy_ = nullptr;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::BondStyle, "rod/cosserat", slender::CosseratRodBond)

@@ -1,0 +1,118 @@
+// Unit tests of bond rod/cosserat (quaternion Cosserat rod, MODELS.md §4) and of
+// the integration of its quaternions (generalised coordinates) by verlet and gear.
+#include <random>
+
+#include "helpers.hpp"
+#include "quaternion_rod.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+namespace {
+RawParams rod(double kbar2 = 0.0, double gamma_q = 0.0) {
+  return P({{"YI", 2.0},
+            {"GJ", 1.5},
+            {"coupling", 50.0},
+            {"rot_inertia", 0.1},
+            {"rest_curvature", std::vector<double>{0.05, kbar2, -0.1}},
+            {"rot_damping", gamma_q}});
+}
+double total_energy(Simulation& sim) {
+  sim.compute_forces();
+  return sim.potential_energy();
+}
+}  // namespace
+
+TEST(CosseratRodBond, ForcesAndQuaternionForcesAreMinusTheEnergyGradient) {
+  Simulation sim(3, 1);
+  sim.add_chain("r", wiggly_chain(7, 3, 21, 0.3), 1.0, false);
+  sim.add_bond("rod/cosserat", rod(0.2));
+  sim.compute_forces();  // binds the frames
+  auto& q = sim.coordinates("rod.q").q->values();
+  std::mt19937 g(4);
+  std::normal_distribution<double> n(0, 0.15);
+  for (size_t i = 0; i + 1 < q.size(); ++i)
+    q[i] = (q[i] + Vec4(n(g), n(g), n(g), n(g))).normalized();
+  EXPECT_LT(fd_force_error(sim), 1e-6);
+  // generalised forces along tangent directions of |q| = 1
+  sim.compute_forces();
+  const auto fq = sim.coordinates("rod.q").f->values();
+  double fscale = 0;
+  for (auto& v : fq) fscale = std::max(fscale, v.norm());
+  const double h = 1e-6;
+  for (size_t i = 0; i + 1 < q.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      Vec4 w(n(g), n(g), n(g), n(g));
+      w -= w.dot(q[i]) * q[i];
+      const Vec4 q0 = q[i];
+      q[i] = q0 + h * w;
+      const double ep = total_energy(sim);
+      q[i] = q0 - h * w;
+      const double em = total_energy(sim);
+      q[i] = q0;
+      EXPECT_NEAR(fq[i].dot(w), -(ep - em) / (2 * h), 1e-6 * fscale) << i;
+      EXPECT_NEAR(fq[i].dot(q[i]), 0.0, 1e-12 * fscale);  // projected
+    }
+}
+
+TEST(CosseratRodBond, StraightRodAtRestAndTwistActsOnFramesOnly) {
+  Simulation sim(3, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 8; ++i) pts.emplace_back(0.9 * i, 0.2 * i, -0.1 * i);
+  sim.add_chain("r", pts, 1.0, false);
+  sim.add_bond("rod/cosserat",
+               P({{"YI", 2.0}, {"GJ", 1.5}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
+  sim.compute_forces();
+  EXPECT_NEAR(sim.potential_energy(), 0.0, 1e-20);
+  for (auto& f : sim.nodes().f) EXPECT_LT(f.norm(), 1e-12);
+  // twist the frames about the tangent, edge by edge: torsion energy, no force on
+  // the straight centreline
+  auto& q = sim.coordinates("rod.q").q->values();
+  const double step = 0.1;
+  for (int i = 0; i < 7; ++i)
+    q[i] = qrod::mul(q[i], Vec4(std::cos(0.5 * step * i), 0, 0, std::sin(0.5 * step * i)));
+  sim.compute_forces();
+  const double l = std::sqrt(0.81 + 0.04 + 0.01);
+  const double k3 = 2.0 / l * std::sin(0.5 * step);  // MODELS.md §4.3
+  EXPECT_NEAR(sim.energies().at("twist"), 6 * 0.5 * l * 1.5 * k3 * k3, 1e-12);
+  EXPECT_NEAR(sim.energies().at("bend"), 0.0, 1e-20);
+  for (auto& f : sim.nodes().f) EXPECT_LT(f.norm(), 1e-10);
+}
+
+TEST(CosseratRodBond, RodWithRestCurvatureRelaxesToItsArc) {
+  // a straight rod with kbar = (0, 1/R, 0) curls into an arc of radius R; the
+  // chord of an arc of length L is 2 R sin(L / 2R)
+  for (const char* integ : {"verlet", "gear"}) {
+    Simulation sim(3, 1);
+    sim.verbose = false;
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 21; ++i) pts.emplace_back(0.5 * i, 0, 0);
+    sim.add_chain("r", pts, 1.0, false);
+    const double R = 4.0;
+    sim.add_bond("spring", P({{"k", 400.0}}));
+    sim.add_bond("rod/cosserat", P({{"YI", 2.0},
+                                    {"GJ", 1.5},
+                                    {"coupling", 200.0},
+                                    {"rot_inertia", 0.5},
+                                    {"rest_curvature", std::vector<double>{0, 1 / R, 0}},
+                                    {"rot_damping", 2.0}}));
+    sim.add_fix("drag", "damping/viscous", P({{"gamma", 2.0}}));
+    sim.set_integrator(integ, P({{"dt", std::string("auto")}}));
+    // damped dynamics until the rod is at rest (Gear's stable step is the smaller)
+    sim.run(RunOptions{600000, 1000,
+                       [](Simulation& s) { return s.step > 5000 && s.kinetic_energy() < 1e-9; }});
+    const double chord = (sim.nodes().x[20] - sim.nodes().x[0]).norm();
+    EXPECT_NEAR(chord, 2 * R * std::sin(10.0 / (2 * R)), 0.02 * R) << integ;
+    EXPECT_LT(sim.kinetic_energy(), 1e-6) << integ;
+    for (auto& qi : sim.coordinates("rod.q").q->values()) EXPECT_NEAR(qi.norm(), 1.0, 1e-12);
+  }
+}
+
+TEST(CosseratRodBond, FireRefusesQuaternionScenes) {
+  Simulation sim(3, 1);
+  sim.verbose = false;
+  sim.add_chain("r", wiggly_chain(5, 3, 2), 1.0, false);
+  sim.add_bond("rod/cosserat", rod());
+  sim.set_integrator("fire", P({}));
+  EXPECT_THROW(sim.run(RunOptions{10, 0, {}}), InputError);
+}

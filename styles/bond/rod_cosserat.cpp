@@ -81,7 +81,12 @@ class CosseratRodBond : public ChainBondStyle {
         const int ea = k, eb = (k + 1) % ne;
         const int qa = c->edge_tail(ea), qb = c->edge_tail(eb);
         const double l = 0.5 * (c->rest_length[ea] + c->rest_length[eb]);
-        const auto h = qrod::hinge(q[qa], q[qb], l, K_, kbar_, fq[qa], fq[qb]);
+        // q and -q are the same rotation: the neighbour is taken in the same
+        // hemisphere (a closed ring's frames come back as -q after a full turn)
+        const double sgn = q[qa].dot(q[qb]) < 0.0 ? -1.0 : 1.0;
+        qrod::Quat fb = qrod::Quat::Zero();
+        const auto h = qrod::hinge(q[qa], sgn * q[qb], l, K_, kbar_, fq[qa], fb);
+        fq[qb] += sgn * fb;
         bend += h.bend;
         twist += h.twist;
         if (node_energy_) (*node_energy_)[c->edge_head(ea)] = h.bend;

@@ -39,9 +39,12 @@ def classify(row, min_winding=2.0, max_loops=2):
     return "classic" if float(row["ab_ratio"]) < 0.5 else "plastic"
 
 
-def run_one(a, y, mu, seed):
+def run_one(a, y, mu, seed, unstable_before=False):
     """One run; a run the instability guard stopped is repeated once with half the
-    time step (the guard's message names the step it would need)."""
+    time step (the guard's message names the step it would need). A point that a
+    previous sweep found unstable starts at half the step."""
+    if unstable_before and a.retry_dt:
+        return run_once(a, y, mu, seed, 0.5 * DECK_DT)
     row = run_once(a, y, mu, seed, DECK_DT)
     if row["status"] == "failed" and "instability" in row.get("error", "") and a.retry_dt:
         first = row["error"]
@@ -157,7 +160,9 @@ def main():
             w = csv.DictWriter(fh, FIELDS, extrasaction="ignore")
             w.writeheader()
             w.writerows(rows)
+    unstable = set()
     if a.retry_failed:
+        unstable = {key(r) for r in rows if r["status"] != "ok" and "instability" in (r.get("error") or "")}
         rows = [r for r in rows if r["status"] == "ok"]
         with open(path, "w", newline="") as fh:
             w = csv.DictWriter(fh, FIELDS)
@@ -177,7 +182,7 @@ def main():
             csv.DictWriter(fh, FIELDS).writeheader()
 
     def job(t):
-        row = run_one(a, *t)
+        row = run_one(a, *t, unstable_before=(round(t[0], 6), round(t[1], 6), t[2]) in unstable)
         with lock:  # append at once: an interrupted sweep loses at most the runs in flight
             with open(path, "a", newline="") as fh:
                 csv.DictWriter(fh, FIELDS).writerow(row)

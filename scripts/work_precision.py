@@ -51,7 +51,10 @@ FAST_NODES = [11, 21]
 FAST_INTEGRATORS = ["verlet", "gear5"]
 DEFAULT_ALPHAS = [0.1, 3.0]
 DEFAULT_BCS = ["pinned", "clamped"]
-DECK_FILES = {"cantilever": "cantilever2d.lua", "buckling": "buckling2d.lua"}
+DECK_FILES = {"cantilever": "cantilever2d.lua", "buckling": "buckling2d.lua",
+              "michell": "michell.lua"}
+# Michell's ring needs more nodes than a beam to be resolved (12 is too coarse)
+MICHELL_NODES = [12, 24, 48]
 
 # CSV columns that always come first (in this order); the remaining RESULT
 # keys follow in first-seen order, then the bookkeeping columns.
@@ -189,12 +192,14 @@ def variant_key(row):
         model = row.get("model") or "bend2d"
         return ((0, a if a is not None else math.inf, label, model),
                 "cantilever, alpha = %s (%s), %s" % (label, kind, model))
+    if case.startswith("michell"):
+        return ((2, 0, "michell"), "michell ring, cosserat rod (gear6)")
     if case.startswith("buckling"):
         bc = row.get("bc", "")
         order = DEFAULT_BCS.index(bc) if bc in DEFAULT_BCS else len(DEFAULT_BCS)
         model = row.get("model") or "bend2d"
         return ((1, order, bc, model), "buckling, %s, %s" % (bc, model))
-    return ((2, 0, case), case or "unknown case")
+    return ((3, 0, case), case or "unknown case")
 
 
 def group_variants(rows):
@@ -419,6 +424,11 @@ def build_plan(args, decks):
                         ov = [("nodes", nodes), ("integrator", integ), ("bc", bc),
                               ("model", model)]
                         plan.append((decks["buckling"], ov, base))
+    if "michell" in decks:
+        # the deck integrates with gear q = 6 itself; the ladder is over nodes
+        for nodes in args.michell_nodes:
+            base = {"case": "michell", "nodes": str(nodes), "integrator": "gear6"}
+            plan.append((decks["michell"], [("nodes", nodes), ("iterations", 12)], base))
     return plan
 
 
@@ -454,6 +464,8 @@ def main(argv=None):
     p.add_argument("--models", nargs="+", default=["bend2d", "rod3d"],
                    help="beam models: bend2d (2D bending springs), rod3d (3D discrete elastic "
                         "rod, bond rod/straight) (default %(default)s)")
+    p.add_argument("--michell-nodes", type=int, nargs="+", default=MICHELL_NODES,
+                   help="node counts of the Michell ring (default %(default)s)")
     p.add_argument("--bcs", nargs="+", default=DEFAULT_BCS,
                    help="buckling boundary conditions (default %(default)s)")
     p.add_argument("--dt-ladder", action="store_true",

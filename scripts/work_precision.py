@@ -463,7 +463,8 @@ def main(argv=None):
                    help="cantilever load parameters alpha = P L^2/EI (default %(default)s)")
     p.add_argument("--models", nargs="+", default=["bend2d", "rod3d"],
                    help="beam models: bend2d (2D bending springs), rod3d (3D discrete elastic "
-                        "rod, bond rod/straight) (default %(default)s)")
+                        "rod, bond rod/straight), cosserat (quaternion rod; not with fire) "
+                        "(default %(default)s)")
     p.add_argument("--michell-nodes", type=int, nargs="+", default=MICHELL_NODES,
                    help="node counts of the Michell ring (default %(default)s)")
     p.add_argument("--bcs", nargs="+", default=DEFAULT_BCS,

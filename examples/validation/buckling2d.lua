@@ -17,9 +17,11 @@ local N = slender.var("nodes", 21)
 local integ = slender.var("integrator", "gear5")
 local bc = slender.var("bc", "pinned")  -- pinned (pinned-pinned) | clamped (clamped-free)
 local iterations = slender.var("iterations", 16)  -- bracket (1.5 - 0.5) / 2^16 = 1.5e-5
-local model = slender.var("model", "bend2d")     -- bend2d | rod3d (3D rod, rod/straight)
-assert(model == "bend2d" or model == "rod3d", "model must be bend2d or rod3d")
-local dim = model == "rod3d" and 3 or 2
+-- bend2d | rod3d (3D discrete elastic rod, rod/straight) | cosserat (3D quaternion rod)
+local model = slender.var("model", "bend2d")
+assert(model == "bend2d" or model == "rod3d" or model == "cosserat",
+       "model must be bend2d, rod3d or cosserat")
+local dim = model == "bend2d" and 2 or 3
 local function vec(x, y) return dim == 3 and { x, y, 0 } or { x, y } end
 
 local L, EI, EA = 1.0, 1.0, 1e5
@@ -47,6 +49,11 @@ local function buckles(P)
   sim:bond("spring", { k = EA / h })
   if model == "rod3d" then
     sim:bond("rod/straight", { YI = EI })  -- MODELS.md §3
+  elseif model == "cosserat" then
+    local Ir = 1e-3 * h * h
+    local kq = 4 * EA * h
+    sim:bond("rod/cosserat", { YI = EI, GJ = EI / 1.33, coupling = EA, rot_inertia = Ir,
+                               rot_damping = 2 * math.sqrt(kq * 4 * Ir * h) })
   else
     sim:bond("bend2d", { k = EI / h })
   end

@@ -15,9 +15,11 @@ local integ = slender.var("integrator", "gear5") -- verlet | gear4 | gear5 | gea
 local alpha = slender.var("alpha", 0.01)        -- load P L^2 / EI
 local dt = slender.var("dt", "auto")
 local write_output = slender.var("output", false)
-local model = slender.var("model", "bend2d")     -- bend2d | rod3d (3D rod, rod/straight)
-assert(model == "bend2d" or model == "rod3d", "model must be bend2d or rod3d")
-local dim = model == "rod3d" and 3 or 2
+-- bend2d | rod3d (3D discrete elastic rod, rod/straight) | cosserat (3D quaternion rod)
+local model = slender.var("model", "bend2d")
+assert(model == "bend2d" or model == "rod3d" or model == "cosserat",
+       "model must be bend2d, rod3d or cosserat")
+local dim = model == "bend2d" and 2 or 3
 local function vec(x, y) return dim == 3 and { x, y, 0 } or { x, y } end
 
 local L, EI, EA = 1.0, 1.0, 1e5
@@ -33,6 +35,13 @@ sim:wire { name = "beam", nodes = N + 1, spacing = h, start = vec(-h / 2, 0), di
 sim:bond("spring", { k = EA / h })  -- k1 = EA / l0 (MODELS.md §1)
 if model == "rod3d" then
   sim:bond("rod/straight", { YI = EI })  -- MODELS.md §3
+elseif model == "cosserat" then
+  -- MODELS.md §4 with C = EA; a light, critically damped frame (rotational inertia
+  -- is not part of a static reference)
+  local Ir = 1e-3 * h * h
+  local kq = 4 * EA * h
+  sim:bond("rod/cosserat", { YI = EI, GJ = EI / 1.33, coupling = EA, rot_inertia = Ir,
+                             rot_damping = 2 * math.sqrt(kq * 4 * Ir * h) })
 else
   sim:bond("bend2d", { k = EI / h })  -- k2 = EI / l0
 end

@@ -46,10 +46,10 @@ def run_one(a, y, mu, seed, unstable_before=False):
     if unstable_before and a.retry_dt:
         return run_once(a, y, mu, seed, 0.5 * DECK_DT)
     row = run_once(a, y, mu, seed, DECK_DT)
-    if row["status"] == "failed" and "instability" in row.get("error", "") and a.retry_dt:
+    if row["status"] in ("failed", "unstable") and "instability" in row.get("error", "") and a.retry_dt:
         first = row["error"]
         row = run_once(a, y, mu, seed, 0.5 * DECK_DT)
-        if row["status"] == "failed":
+        if row["status"] != "ok":
             row["error"] = ("with dt/2: " + row.get("error", "") + " | with dt: " + first)[:300]
     return row
 
@@ -70,11 +70,14 @@ def run_once(a, y, mu, seed, dt):
     for line in out.splitlines():
         if line.startswith("RESULT"):
             res = dict(kv.partition("=")[::2] for kv in line.split()[1:])
-    if rc == 0 and res:
+    if res and (rc == 0 or res.get("ended") == "instability"):
         for k in ("phi", "jammed", "loops", "winding", "ab_ratio", "contacts", "steps", "wall_s"):
             row[k] = res.get(k, "")
         row["class"] = classify(row)
-        row["status"] = "ok"
+        # a run the guard stopped is classified from its last good state
+        row["status"] = "ok" if rc == 0 else "unstable"
+        if rc != 0:
+            row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
     else:
         row["status"] = "failed"
         row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
@@ -98,7 +101,7 @@ def draw(rows, out, yields, mus, f):
     import matplotlib.pyplot as plt
     classes = ["spiral", "plastic", "classic"]
     colours = {"spiral": "#4c72b0", "plastic": "#dd8452", "classic": "#55a868"}
-    ok = [r for r in rows if r["status"] == "ok"]
+    ok = [r for r in rows if r["status"] in ("ok", "unstable")]
     fig, ax = plt.subplots(figsize=(6, 5))
     grid_phi = np.full((len(mus), len(yields)), np.nan)
     for i, mu in enumerate(mus):

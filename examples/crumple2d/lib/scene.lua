@@ -98,7 +98,7 @@ function M.report(sim, ctx, wall, node_steps)
     contacts = sim:value("contact/node-edge.contacts"), ab_ratio = sim:value("shape.ratio"),
     loops = sim:value("loops.loops"), fractal_dimension = ctx.with_fractal and sim:value("frac.D") or 0,
     winding = sim:value("shape.winding"), ke_per_node = sim:value("ke") / sim:nnodes(),
-    node_steps_per_s = node_steps / math.max(wall, 1e-9) }
+    node_steps_per_s = node_steps / math.max(wall, 1e-9), ended = ctx.ended or "stop" }
 end
 
 -- Injects until the wire jams (or max_phi / max_steps) and reports.
@@ -107,9 +107,14 @@ function M.run(p)
   local t0 = slender.clock()
   -- node-steps summed as the wire grows (the node count changes every few hundred steps)
   local node_steps, every = 0, 1000
-  sim:run { steps = slender.var("max_steps", 1e9) - sim:step(), every = every,
-            callback = function(s) node_steps = node_steps + every * s:nnodes() end }
+  local ok, err = pcall(sim.run, sim, { steps = slender.var("max_steps", 1e9) - sim:step(), every = every,
+            callback = function(s) node_steps = node_steps + every * s:nnodes() end })
+  -- a run the instability guard stopped (typically a frictionless wire overpacked
+  -- to phi ~ 0.95 tearing an edge) still reports the last good state, marked
+  -- ended=instability, and then fails with the guard's message (exit code 3)
+  ctx.ended = ok and "stop" or "instability"
   M.report(sim, ctx, slender.clock() - t0, node_steps)
+  if not ok then error(err, 0) end
   -- tests: -v check=true asserts that the run ended quasi-statically (a jam, not a burst)
   if slender.var("check", false) then
     assert(sim:value("ke") / sim:nnodes() < 0.1, "the run ended with kinetic energy " .. sim:value("ke"))

@@ -122,10 +122,12 @@ TEST(CosseratRodBond, ClosedRingIsBentButUntwistedAndItsForcesMatchTheEnergy) {
   const int n = 24;
   const double R = 3.0;
   std::vector<Vec3> pts;
-  for (int i = 0; i < n; ++i) pts.emplace_back(R * std::cos(2 * M_PI * i / n), R * std::sin(2 * M_PI * i / n), 0);
+  for (int i = 0; i < n; ++i)
+    pts.emplace_back(R * std::cos(2 * M_PI * i / n), R * std::sin(2 * M_PI * i / n), 0);
   Simulation sim(3, 1);
   sim.add_chain("ring", pts, 1.0, true);
-  sim.add_bond("rod/cosserat", P({{"YI", 2.0}, {"GJ", 1.5}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
+  sim.add_bond("rod/cosserat",
+               P({{"YI", 2.0}, {"GJ", 1.5}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
   sim.compute_forces();
   // bending 2/l sin(theta/2) per vertex, theta = 2 pi / n: E = n l/2 YI kappa^2
   const double l = 2 * R * std::sin(M_PI / n), kap = 2 / l * std::sin(M_PI / n);

@@ -64,6 +64,12 @@ class WireInjectionFix : public FixStyle {
         .nonnegative();
     s.real("jam_dphi", "... within this increase of the packing density").def(0.005).positive();
     s.real("max_phi", "stop at this packing density").def(1.0).positive();
+    s.real("perturb",
+           "random transverse displacement (seeded) given to each node as the channel releases "
+           "it: the wire entering a cavity is never perfectly straight, so it cannot hit the far "
+           "wall exactly head-on")
+        .def(0.0)
+        .nonnegative();
     return s;
   }
 
@@ -78,7 +84,8 @@ class WireInjectionFix : public FixStyle {
         growth_(p.real("jam_growth")),
         dphi_(p.real("jam_dphi")),
         max_phi_(p.real("max_phi")),
-        hold_rotation_(p.str("rotation") == "held") {
+        hold_rotation_(p.str("rotation") == "held"),
+        perturb_(p.real("perturb")) {
     dim_ = sim.dimension();
     Chain* c = sim.topology().find(chain_);
     if (!c) throw InputError("fix style 'inject/wire': unknown chain '" + chain_ + "'");
@@ -159,6 +166,7 @@ class WireInjectionFix : public FixStyle {
       const int i = driven_[k];
       if (!in_channel(x[i])) {
         (*mask_)[i] = 0;
+        if (perturb_ > 0) kick(sim, i);
         if (held_) (*held_)[i] = 0;
         driven_[k] = driven_.back();
         driven_.pop_back();
@@ -278,6 +286,14 @@ class WireInjectionFix : public FixStyle {
       if (-(x - c_).dot(k.u) > -(x - c_).dot(best->u)) best = &k;
     return *best;
   }
+  // a random displacement of amplitude perturb_ normal to the channel axis
+  void kick(Simulation& sim, int i) {
+    const Vec3 u = driving(sim.nodes().x[i]).u;
+    std::uniform_real_distribution<double> r(-1.0, 1.0);
+    Vec3 d(r(sim.rng()), r(sim.rng()), dim_ == 3 ? r(sim.rng()) : 0.0);
+    d -= d.dot(u) * u;
+    sim.nodes().x[i] += perturb_ * d;
+  }
   // moves a point onto the channel axis (the channel holds the wire straight)
   void to_axis(Vec3& x, const Vec3& u) const {
     const Vec3 r = x - c_;
@@ -321,6 +337,7 @@ class WireInjectionFix : public FixStyle {
   long window_;
   double growth_, dphi_, max_phi_;
   bool hold_rotation_ = false;
+  double perturb_ = 0.0;
   Property<int>* held_ = nullptr;  // rod.q.fixed: the frames the channel prescribes
   std::vector<Channel> channels_;
   std::vector<int> driven_;  // nodes this fix moves kinematically

@@ -11,7 +11,9 @@
 -- (F R^2 / YI = 0.04 R^2) lies below the Euler load that the first head-on contact
 -- of the straight rod with the far wall needs (measured: 10 YI / R^2 is not enough at
 -- R = 5, where the rod, clamped in the nozzle and held by friction, hits head-on) for R < 16,
--- and would end every small-sphere run there.
+-- and would end every small-sphere run there. Nodes leaving the nozzle get a random
+-- transverse displacement of 0.01 a (-v perturb=): a perfectly straight feed hits the
+-- far wall exactly head-on and overshoots the Euler load (R = 10 stopped at phi = 0.015).
 local M = {}
 
 function M.build(p)
@@ -47,6 +49,7 @@ function M.build(p)
   sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(YA / l0 * m) })
   sim:fix("feed", "inject/wire", { chain = "rod", radius = R, center = { 0, 0, 0 }, channels = "nozzle",
     direction = { 0, 0, -1 }, speed = speed, diameter = 2 * a, rotation = p.rotation or "free",
+    perturb = slender.var("perturb", 0.01 * a),
     jam_force = slender.var("stop_force", math.max(0.01 * YA, 20 * YI / R ^ 2)), jam_window = 1000,
     max_phi = slender.var("max_phi", 1.0) })
   sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })

@@ -8,8 +8,53 @@
 #include <vector>
 
 #include "nodes.hpp"
+#include "params.hpp"
+#include "simulation.hpp"
 
 namespace slender {
+
+// When a contact pair list (pairs within the cut-off plus a skin) must be rebuilt:
+// every N steps if asked, else as soon as some node moved more than skin/2 since
+// the last build, so no pair can come into contact unlisted (MODELS.md §2.3, §5.1).
+class RebuildSchedule {
+ public:
+  static void declare(ParamSpec& s, const std::string& skin_help) {
+    s.real("skin", skin_help).def(1.0).positive();
+    s.integer("rebuild_every", "rebuild the pair list every N steps (0: when a node moved skin/2)")
+        .def(0.0)
+        .min(0);
+  }
+  explicit RebuildSchedule(const ParamValues& p)
+      : skin_(p.real("skin")), every_(p.integer("rebuild_every")) {}
+  double skin() const { return skin_; }
+  bool due(const Simulation& sim) const {
+    if (every_ > 0) return sim.step - last_ >= every_;
+    const auto& x = sim.nodes().x;
+    if (x_.size() != x.size()) return true;
+    const double lim = 0.25 * skin_ * skin_;  // (skin/2)^2
+    for (std::size_t i = 0; i < x_.size(); ++i)
+      if ((x[i] - x_[i]).squaredNorm() > lim) return true;
+    return false;
+  }
+  void built(const Simulation& sim) {
+    x_ = sim.nodes().x;
+    last_ = sim.step;
+    builds_ += 1;
+  }
+  double builds() const { return builds_; }
+  void save(StateMap& st) const { st["counters"] = {builds_, static_cast<double>(last_)}; }
+  void load(const StateMap& st) {
+    builds_ = st.at("counters")[0];
+    last_ = static_cast<long>(st.at("counters")[1]);
+  }
+
+ private:
+  double skin_;
+  long every_;
+  std::vector<Vec3> x_;
+  long last_ = 0;
+  double builds_ = 0;
+};
 
 class CellGrid {
  public:

@@ -25,10 +25,7 @@ class NodeEdgeContactPair : public PairStyle {
         .def(1.0)
         .positive();
     ContactLaw::declare(s);
-    s.real("skin", "pair-list skin: pairs closer than d + skin are listed").def(1.0).positive();
-    s.integer("rebuild_every", "rebuild the pair list every N steps (0: when a node moved skin/2)")
-        .def(0.0)
-        .min(0);
+    RebuildSchedule::declare(s, "pair-list skin: pairs closer than d + skin are listed");
     s.integer("exclude", "skip edges within this many nodes along the same chain").def(2.0).min(0);
     s.add("chains", ParamType::StringList, "chains that touch each other (default: all)")
         .def(std::vector<std::string>{});
@@ -38,8 +35,7 @@ class NodeEdgeContactPair : public PairStyle {
   NodeEdgeContactPair(Simulation& sim, const ParamValues& p)
       : d_(p.real("diameter")),
         law_(ContactLaw::from(p, p.real("diameter"))),
-        skin_(p.real("skin")),
-        every_(p.integer("rebuild_every")),
+        schedule_(p),
         exclude_(static_cast<int>(p.integer("exclude"))),
         names_(p.strings("chains")) {
     if (sim.dimension() != 2)
@@ -68,7 +64,7 @@ class NodeEdgeContactPair : public PairStyle {
   double compute(Simulation& sim) override {
     if (edges_.empty() && !chains_.empty()) setup(sim);
     if (chain_of_.size() != sim.nodes().size() || topology_changed(sim)) setup(sim);
-    if (need_build_ || due(sim)) build(sim);
+    if (need_build_ || schedule_.due(sim)) build(sim);
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
@@ -141,7 +137,7 @@ class NodeEdgeContactPair : public PairStyle {
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
     if (key == "pairs") return static_cast<double>(list_.size());
-    if (key == "builds") return builds_;
+    if (key == "builds") return schedule_.builds();
     return PairStyle::value(key);
   }
   void save_state(StateMap& st) const override {
@@ -150,7 +146,7 @@ class NodeEdgeContactPair : public PairStyle {
       flat.insert(flat.end(), {double(e.node), double(e.edge), e.st.xi.x(), e.st.xi.y(),
                                e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0, double(e.side)});
     st["history"] = flat;
-    st["counters"] = {builds_, static_cast<double>(last_build_step_)};
+    schedule_.save(st);
   }
   void load_state(const StateMap& st) override {
     list_.clear();
@@ -165,8 +161,7 @@ class NodeEdgeContactPair : public PairStyle {
       e.side = static_cast<int>(h[k + 6]);
       list_.push_back(e);
     }
-    builds_ = st.at("counters")[0];
-    last_build_step_ = static_cast<long>(st.at("counters")[1]);
+    schedule_.load(st);
   }
 
  private:
@@ -185,14 +180,6 @@ class NodeEdgeContactPair : public PairStyle {
     for (auto* c : chains_) ne += static_cast<size_t>(c->n_edges());
     return ne != edges_.size();
   }
-  bool due(const Simulation& sim) const {
-    if (every_ > 0) return sim.step - last_build_step_ >= every_;
-    const double lim = 0.25 * skin_ * skin_;  // (skin/2)^2
-    auto& x = sim.nodes().x;
-    for (size_t i = 0; i < x_build_.size(); ++i)
-      if ((x[i] - x_build_[i]).squaredNorm() > lim) return true;
-    return false;
-  }
   bool excluded(int node, const Edge& e) const {
     if (chain_of_[node] != e.chain) return false;
     const Chain& ch = *chains_[e.chain];
@@ -207,7 +194,7 @@ class NodeEdgeContactPair : public PairStyle {
   // Linked cells over the nodes; each edge is filed under its midpoint's cell.
   void build(Simulation& sim) {
     auto& x = sim.nodes().x;
-    const double cutoff = d_ + skin_;
+    const double cutoff = d_ + schedule_.skin();
     double lmax = 0.0;
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (auto& e : edges_) {
@@ -255,10 +242,8 @@ class NodeEdgeContactPair : public PairStyle {
         e.side = old_[j].side;
       }
     }
-    x_build_ = x;
-    last_build_step_ = sim.step;
+    schedule_.built(sim);
     need_build_ = false;
-    builds_ += 1;
   }
 
   // A new contact whose node was touching the neighbouring edge of the same chain
@@ -280,8 +265,7 @@ class NodeEdgeContactPair : public PairStyle {
 
   double d_;
   ContactLaw law_;
-  double skin_;
-  long every_;
+  RebuildSchedule schedule_;
   int exclude_;
   std::vector<std::string> names_;
   std::vector<const Chain*> chains_;
@@ -290,10 +274,7 @@ class NodeEdgeContactPair : public PairStyle {
   std::vector<Entry> list_, old_;
   CellGrid grid_;
   std::vector<Vec3> mid_;
-  std::vector<Vec3> x_build_;
   bool need_build_ = true;
-  long last_build_step_ = 0;
-  double builds_ = 0;
   int contacts_ = 0;
 };
 

@@ -32,10 +32,7 @@ class SegmentContactPair : public PairStyle {
            "edges (instead of a fixed 'stiffness')")
         .positive();
     s.real("poisson", "Poisson ratio nu for E*").def(0.33).min(0.0).max(0.5, true);
-    s.real("skin", "pair-list skin: pairs closer than 2a + skin are listed").def(1.0).positive();
-    s.integer("rebuild_every", "rebuild the pair list every N steps (0: when a node moved skin/2)")
-        .def(0.0)
-        .min(0);
+    RebuildSchedule::declare(s, "pair-list skin: pairs closer than 2a + skin are listed");
     s.integer("exclude",
               "skip edge pairs within this many edges along the same chain (default ceil(2a / "
               "l0) + 1)")
@@ -48,8 +45,7 @@ class SegmentContactPair : public PairStyle {
   SegmentContactPair(Simulation& sim, const ParamValues& p)
       : a_(p.real("radius")),
         law_(ContactLaw::from(p, 2.0 * p.real("radius"))),
-        skin_(p.real("skin")),
-        every_(p.integer("rebuild_every")),
+        schedule_(p),
         names_(p.strings("chains")) {
     if (sim.dimension() != 3)
       throw InputError("pair style 'contact/segment' needs a 3D simulation (dimension = 3)");
@@ -84,7 +80,7 @@ class SegmentContactPair : public PairStyle {
 
   double compute(Simulation& sim) override {
     if (!bound_ || topology_changed()) setup(sim);
-    if (need_build_ || due(sim)) build(sim);
+    if (need_build_ || schedule_.due(sim)) build(sim);
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
@@ -137,7 +133,7 @@ class SegmentContactPair : public PairStyle {
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
     if (key == "pairs") return static_cast<double>(list_.size());
-    if (key == "builds") return builds_;
+    if (key == "builds") return schedule_.builds();
     return PairStyle::value(key);
   }
   void save_state(StateMap& st) const override {
@@ -146,7 +142,7 @@ class SegmentContactPair : public PairStyle {
       flat.insert(flat.end(), {double(e.e1), double(e.e2), e.st.xi.x(), e.st.xi.y(), e.st.xi.z(),
                                e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0});
     st["history"] = flat;
-    st["counters"] = {builds_, static_cast<double>(last_build_step_)};
+    schedule_.save(st);
   }
   void load_state(const StateMap& st) override {
     list_.clear();
@@ -160,8 +156,7 @@ class SegmentContactPair : public PairStyle {
       e.st.active = h[k + 6] != 0;
       list_.push_back(e);
     }
-    builds_ = st.at("counters")[0];
-    last_build_step_ = static_cast<long>(st.at("counters")[1]);
+    schedule_.load(st);
   }
 
  private:
@@ -179,15 +174,6 @@ class SegmentContactPair : public PairStyle {
     for (auto* c : chains_) ne += static_cast<size_t>(c->n_edges());
     return ne != edges_.size();
   }
-  bool due(const Simulation& sim) const {
-    if (every_ > 0) return sim.step - last_build_step_ >= every_;
-    if (x_build_.size() != sim.nodes().x.size()) return true;
-    const double lim = 0.25 * skin_ * skin_;  // (skin/2)^2
-    auto& x = sim.nodes().x;
-    for (size_t i = 0; i < x_build_.size(); ++i)
-      if ((x[i] - x_build_[i]).squaredNorm() > lim) return true;
-    return false;
-  }
   bool excluded(const Edge& e, const Edge& o) const {
     if (e.chain != o.chain) return false;
     const Chain& ch = *chains_[static_cast<size_t>(e.chain)];
@@ -198,7 +184,7 @@ class SegmentContactPair : public PairStyle {
 
   void build(Simulation& sim) {
     auto& x = sim.nodes().x;
-    const double cutoff = 2.0 * a_ + skin_;
+    const double cutoff = 2.0 * a_ + schedule_.skin();
     double lmax = 0.0;
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     mid_.resize(edges_.size());
@@ -241,16 +227,13 @@ class SegmentContactPair : public PairStyle {
         ++j;
       if (j < old_.size() && old_[j].e1 == e.e1 && old_[j].e2 == e.e2) e.st = old_[j].st;
     }
-    x_build_ = x;
-    last_build_step_ = sim.step;
+    schedule_.built(sim);
     need_build_ = false;
-    builds_ += 1;
   }
 
   double a_;
   ContactLaw law_;
-  double skin_;
-  long every_;
+  RebuildSchedule schedule_;
   int exclude_ = 3;
   double estar_per_length_ = 0.0, nominal_k_ = 0.0;
   std::vector<std::string> names_;
@@ -258,10 +241,8 @@ class SegmentContactPair : public PairStyle {
   std::vector<Edge> edges_;
   std::vector<Entry> list_, old_;
   CellGrid grid_;
-  std::vector<Vec3> mid_, x_build_;
+  std::vector<Vec3> mid_;
   bool need_build_ = true, bound_ = false;
-  long last_build_step_ = 0;
-  double builds_ = 0;
   int contacts_ = 0;
 };
 

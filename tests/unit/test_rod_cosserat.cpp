@@ -1,5 +1,6 @@
 // Unit tests of bond rod/cosserat (quaternion Cosserat rod, MODELS.md §4) and of
 // the integration of its quaternions (generalised coordinates) by verlet and gear.
+// Covers styles/bond/rod_cosserat.cpp.
 #include <random>
 
 #include "helpers.hpp"

@@ -1,4 +1,5 @@
 // Unit tests of bond rod/straight (discrete elastic rod without directors,
+// Covers styles/bond/rod_straight.cpp and styles/compute/gyration.cpp.
 // MODELS.md §3): forces against the energy, invariances, exact values.
 #include <Eigen/Geometry>
 #include <cmath>

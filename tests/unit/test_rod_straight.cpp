@@ -1,6 +1,6 @@
 // Unit tests of bond rod/straight (discrete elastic rod without directors,
-// Covers styles/bond/rod_straight.cpp and styles/compute/gyration.cpp.
 // MODELS.md §3): forces against the energy, invariances, exact values.
+// Covers styles/bond/rod_straight.cpp and styles/compute/gyration.cpp.
 #include <Eigen/Geometry>
 #include <cmath>
 

@@ -102,7 +102,7 @@ def draw(rows, out, yields, mus, f):
     classes = ["spiral", "plastic", "classic"]
     colours = {"spiral": "#4c72b0", "plastic": "#dd8452", "classic": "#55a868"}
     ok = [r for r in rows if r["status"] in ("ok", "unstable")]
-    fig, ax = plt.subplots(figsize=(6, 5))
+    fig, ax = plt.subplots(figsize=(8, 5))
     grid_phi = np.full((len(mus), len(yields)), np.nan)
     for i, mu in enumerate(mus):
         for j, y in enumerate(yields):
@@ -112,7 +112,9 @@ def draw(rows, out, yields, mus, f):
             counts = {c: sum(r["class"] == c for r in pts) for c in classes}
             top = max(classes, key=lambda c: counts[c])
             share = counts[top] / len(pts)
-            ax.scatter(y, mu, s=300 * share + 40, c=colours[top], marker="s", edgecolors="k", linewidths=0.3)
+            shaky = any(r["status"] == "unstable" for r in pts)  # classified from the last good state
+            ax.scatter(y, mu, s=300 * share + 40, c=colours[top], marker="s",
+                       edgecolors="r" if shaky else "k", linewidths=1.5 if shaky else 0.3)
             ax.annotate(f"{counts[top]}/{len(pts)}", (y, mu), fontsize=6, ha="center", va="center")
             grid_phi[i, j] = np.mean([float(r["phi"]) for r in pts])
     for c in classes:
@@ -120,7 +122,8 @@ def draw(rows, out, yields, mus, f):
     ax.set_xlabel("yield curvature kappa_theta")
     ax.set_ylabel("static friction mu_st")
     ax.set_title(f"2D crumpling phase diagram, f = {f:g} (majority class, count/seeds)", fontsize=9)
-    ax.legend(fontsize=8, loc="upper right")
+    ax.scatter([], [], c="w", marker="s", edgecolors="r", linewidths=1.5, label="guard stop (last good state)")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     fig.savefig(out + ".png", dpi=120)
     plt.close(fig)
@@ -197,8 +200,10 @@ def main():
         list(ex.map(job, todo))
     rows = load(path)
     draw(rows, a.out, sorted(set(a.yields)), sorted(set(a.mus)), a.f)
-    ok = [r for r in rows if r["status"] == "ok"]
-    print(f"{len(ok)} ok, {len(rows) - len(ok)} failed; wrote {a.out}.png {a.out}_phi.png")
+    ok = sum(r["status"] == "ok" for r in rows)
+    unstable = sum(r["status"] == "unstable" for r in rows)
+    print(f"{ok} ok, {unstable} unstable (classified from the last good state), "
+          f"{len(rows) - ok - unstable} failed; wrote {a.out}.png {a.out}_phi.png")
 
 
 if __name__ == "__main__":

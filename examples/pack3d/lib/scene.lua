@@ -84,7 +84,10 @@ function M.run(p)
     rg_over_R = sim:value("gyr.rg") / R,
     contacts = sim:value("contact/segment.contacts"), nodes = sim:nnodes(), steps = sim:step(),
     wall_s = wall, node_steps_per_s = node_steps / math.max(wall, 1e-9),
-    ke_per_node = sim:value("ke") / sim:nnodes() }
+    ke_per_node = sim:value("ke") / sim:nnodes(),
+    -- rods with frames: the largest |t - d3| (MODELS.md §4.3 wants < 1e-2)
+    misalignment = (pcall(sim.value, sim, "rod/cosserat.misalignment")) and
+                   sim:value("rod/cosserat.misalignment") or 0 }
   return sim
 end
 

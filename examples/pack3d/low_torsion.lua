@@ -1,7 +1,7 @@
 -- Purpose: the low-torsion packing (MODELS.md §3, §5; thesis ch. 4): a naturally
 -- straight rod, free to twist, modelled as a discrete elastic rod without directors,
 -- fed through a nozzle into a sphere until the injection force reaches 0.01 YA.
--- Expected run time: R = 4 (fast mode, -v R=4): ~10 s; R = 10: minutes; R = 20: hours.
+-- Expected run time: R = 4 (fast mode, -v R=4): ~5 s; R = 10: ~15 min; R = 20: ~2 h.
 -- Thesis parameters: a = 1, Y = 1000, nu = 0.33, mu_s = 0.2, mu_d = 0.18; R in
 -- {4, 5, 10, 13, 20, 40, 50}.
 require("lib.scene").run { name = "low_torsion", R = 10,

@@ -136,7 +136,36 @@ PairStyle& Simulation::add_pair(const std::string& style, const RawParams& p) {
   schedule_dirty_ = true;
   return *pairs_.back();
 }
+ShellStyle& Simulation::add_shell(const std::string& style, const RawParams& p) {
+  auto b = Registry<ShellStyle>::create(style, *this, p);
+  b->set_id(unique_id(shells_, style));
+  b->attach(*this);
+  shells_.push_back(std::move(b));
+  forces_valid = false;
+  schedule_dirty_ = true;
+  return *shells_.back();
+}
+GrowthStyle& Simulation::add_growth(const std::string& id, const std::string& style,
+                                    const RawParams& p) {
+  if (find_style(id)) throw InputError("the id '" + id + "' is already used");
+  auto g = Registry<GrowthStyle>::create(style, *this, p);
+  g->set_id(id);
+  g->attach(*this);
+  auto& ref = *g;
+  growths_[id] = std::move(g);
+  forces_valid = false;
+  return ref;
+}
+GrowthStyle& Simulation::growth(const std::string& id) {
+  auto it = growths_.find(id);
+  if (it == growths_.end()) throw InputError("unknown growth '" + id + "'");
+  return *it->second;
+}
 Style* Simulation::find_style(const std::string& id) {
+  if (integrator_ && integrator_->id() == id) return integrator_.get();
+  for (auto& s : shells_)
+    if (s->id() == id) return s.get();
+  if (auto it = growths_.find(id); it != growths_.end()) return it->second.get();
   for (auto& f : fixes_)
     if (f->id() == id) return f.get();
   for (auto& c : computes_)
@@ -214,6 +243,7 @@ void Simulation::build_schedule() {
   }
   for (auto& f : fixes_)
     if (f->stages() & kMeasure) fix_post_force_.push_back(f.get());
+  for (auto& s : shells_) s->setup(*this);
   for (auto& b : bonds_) b->setup(*this);
   for (auto& p : pairs_) p->setup(*this);
   for (auto& f : fixes_)
@@ -244,6 +274,7 @@ void Simulation::compute_forces() {
   for (auto& c : coords_)
     for (auto& f : c->f->values()) f.setZero();
   for (auto& [k, e] : energy_) e = 0.0;
+  for (auto& s : shells_) s->compute(*this);
   for (auto& b : bonds_) energy_[b->energy_category()] += b->compute(*this);
   for (auto& p : pairs_) energy_["contact"] += p->compute(*this);
   double ext = 0.0;
@@ -307,6 +338,7 @@ double Simulation::omega_max(std::string* who) const {
       if (who) *who = name;
     }
   };
+  for (auto& s : shells_) take(s->max_frequency(*this), "shell " + s->id());
   for (auto& b : bonds_) take(b->max_frequency(*this), "bond " + b->id());
   for (auto& p : pairs_) take(p->max_frequency(*this), "pair " + p->id());
   for (auto& f : fixes_) take(f->max_frequency(*this), "fix " + f->id());
@@ -367,8 +399,8 @@ void Simulation::resolve_dt() {
 
 void Simulation::setup_run() {
   if (nodes_.size() == 0) throw InputError("the scene has no nodes");
+  build_schedule();  // styles bind first: some measure their stiffness in setup()
   resolve_dt();
-  build_schedule();
   if (!forces_valid) compute_forces();
   integrator_->setup(*this);
   if (verbose) {
@@ -377,6 +409,7 @@ void Simulation::setup_run() {
     std::printf("run: integrator %s, dt %.6g", integrator_->style_name().c_str(), dt);
     if (w > 0) std::printf(" (stable estimate %.4g, stiffest: %s)", suggest_dt(1.0), who.c_str());
     std::printf("\n  forces:");
+    for (auto& s : shells_) std::printf(" shell %s;", s->id().c_str());
     for (auto& b : bonds_) std::printf(" bond %s;", b->id().c_str());
     for (auto& p : pairs_) std::printf(" pair %s;", p->id().c_str());
     for (auto* f : fix_post_force_) std::printf(" fix %s;", f->id().c_str());

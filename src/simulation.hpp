@@ -99,6 +99,9 @@ class Simulation {
   bool has_group(const std::string& name) const;
   BondStyle& add_bond(const std::string& style, const RawParams& p);
   PairStyle& add_pair(const std::string& style, const RawParams& p);
+  ShellStyle& add_shell(const std::string& style, const RawParams& p);
+  GrowthStyle& add_growth(const std::string& id, const std::string& style, const RawParams& p);
+  GrowthStyle& growth(const std::string& id);
   FixStyle& add_fix(const std::string& id, const std::string& style, const RawParams& p);
   ComputeStyle& add_compute(const std::string& id, const std::string& style, const RawParams& p);
   DumpStyle& add_dump(const std::string& id, const std::string& style, const RawParams& p);
@@ -110,6 +113,7 @@ class Simulation {
   IntegratorStyle* integrator() { return integrator_.get(); }
   const std::vector<std::unique_ptr<BondStyle>>& bonds() const { return bonds_; }
   const std::vector<std::unique_ptr<PairStyle>>& pairs() const { return pairs_; }
+  const std::vector<std::unique_ptr<ShellStyle>>& shells() const { return shells_; }
   const std::vector<std::unique_ptr<FixStyle>>& fixes() const { return fixes_; }
 
   // --- running
@@ -182,6 +186,8 @@ class Simulation {
   std::map<std::string, std::vector<int>> groups_;
   std::vector<std::unique_ptr<BondStyle>> bonds_;
   std::vector<std::unique_ptr<PairStyle>> pairs_;
+  std::vector<std::unique_ptr<ShellStyle>> shells_;
+  std::map<std::string, std::unique_ptr<GrowthStyle>> growths_;
   std::vector<std::unique_ptr<FixStyle>> fixes_;
   std::vector<std::unique_ptr<ComputeStyle>> computes_;
   std::vector<std::unique_ptr<DumpStyle>> dumps_;

@@ -81,6 +81,36 @@ class FixStyle : public Style {
   virtual double max_frequency(const Simulation&) const { return 0.0; }
 };
 
+// Thin shells on triangle meshes (MODELS.md §6): their own family, evaluated
+// before bonds and pairs because they also place the ghost nodes of their mesh.
+class ShellStyle : public Style {
+ public:
+  static const char* family() { return "shell"; }
+  virtual void setup(Simulation&) {}
+  // Adds forces; records its energies with Simulation::add_energy.
+  virtual void compute(Simulation& sim) = 0;
+  virtual double max_frequency(const Simulation& sim) const = 0;
+};
+
+// In-plane growth tensors G(X, t) of the multiplicative decomposition F = A G
+// (MODELS.md §6.2, §6.9), evaluated at reference positions.
+class GrowthStyle : public Style {
+ public:
+  static const char* family() { return "growth"; }
+  // 3x3 world-frame tensor; only its action on tangent vectors matters.
+  virtual Eigen::Matrix3d tensor(const Vec3& X, double time) const = 0;
+  // Depends on time by itself (not only through sim:modify).
+  virtual bool time_dependent() const { return false; }
+  // Bumped by modify(), so shells know when to recompute their growth data.
+  long version() const { return version_; }
+
+ protected:
+  void bump() { ++version_; }
+
+ private:
+  long version_ = 0;
+};
+
 class ComputeStyle : public Style {
  public:
   static const char* family() { return "compute"; }

@@ -1,6 +1,7 @@
 // Wires and rods as ordered chains of nodes with rest lengths per edge.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,8 +44,26 @@ struct Chain {
   }
 };
 
+namespace shell {
+struct GhostedMesh;
+}
+
+// A triangle mesh of a shell: its nodes are first_node + the mesh's local ids
+// (real nodes, then ghosts); `reference` holds the unperturbed positions.
+struct Surface {
+  std::string name;
+  std::shared_ptr<shell::GhostedMesh> mesh;
+  int first_node = 0;
+};
+
 struct Topology {
   std::vector<Chain> chains;
+  std::vector<Surface> surfaces;
+  Surface* find_surface(const std::string& name) {
+    for (auto& s : surfaces)
+      if (s.name == name) return &s;
+    return nullptr;
+  }
   Chain* find(const std::string& name) {
     for (auto& c : chains)
       if (c.name == name) return &c;

@@ -33,8 +33,10 @@ inline double fd_force_error(Simulation& sim, double h = 1e-6) {
   double fscale = 1e-12;
   for (auto& v : f) fscale = std::max(fscale, v.cwiseAbs().maxCoeff());
   double worst = 0.0;
+  const Property<int>* mask = n.find<int>("dof_mask");
   for (size_t i = 0; i < n.size(); ++i)
     for (int c = 0; c < sim.dimension(); ++c) {
+      if (mask && ((*mask)[i] & (1 << c))) continue;  // clamped: no force by design
       const double x0 = n.x[i][c];
       n.x[i][c] = x0 + h;
       sim.compute_forces();

@@ -1,0 +1,359 @@
+#include "shell/trimesh.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "params.hpp"
+
+namespace slender::shell {
+
+namespace {
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+}  // namespace
+
+void refine(TriMesh& m) {
+  std::map<std::uint64_t, int> mid;
+  auto midpoint = [&](int a, int b) {
+    auto [it, fresh] = mid.try_emplace(edge_key(a, b), m.n_nodes());
+    if (fresh) m.x.push_back(0.5 * (m.x[a] + m.x[b]));
+    return it->second;
+  };
+  std::vector<Tri> out;
+  out.reserve(4 * m.tri.size());
+  for (const Tri& t : m.tri) {
+    const int a = t[0], b = t[1], c = t[2];
+    const int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+    out.push_back({a, ab, ca});
+    out.push_back({ab, b, bc});
+    out.push_back({ca, bc, c});
+    out.push_back({ab, bc, ca});
+  }
+  m.tri = std::move(out);
+}
+
+TriMesh make_disc(double radius, int refinements) {
+  if (radius <= 0) throw InputError("disc mesh: radius must be positive");
+  if (refinements < 0 || refinements > 9)
+    throw InputError("disc mesh: refinements must be in [0, 9]");
+  TriMesh m;
+  m.x.push_back(Vec3::Zero());
+  for (int k = 0; k < 6; ++k)
+    m.x.push_back(Vec3(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0.0));
+  for (int k = 0; k < 6; ++k) m.tri.push_back({0, 1 + k, 1 + (k + 1) % 6});
+  for (int r = 0; r < refinements; ++r) refine(m);
+  // hexagon -> disc: keep the direction, map the hexagonal norm to the radius
+  const double apothem = std::cos(M_PI / 6);
+  for (Vec3& p : m.x) {
+    const double len = p.norm();
+    if (len < 1e-14) continue;
+    double hexnorm = 0.0;
+    for (int k = 0; k < 6; ++k) {
+      const double a = M_PI / 6 + k * M_PI / 3;
+      hexnorm = std::max(hexnorm, (p.x() * std::cos(a) + p.y() * std::sin(a)) / apothem);
+    }
+    p *= radius * hexnorm / len;
+  }
+  return m;
+}
+
+namespace {
+TriMesh structured(int nu, int nv, bool periodic_v, const std::function<Vec3(int, int)>& place) {
+  TriMesh m;
+  const int cols = periodic_v ? nv : nv + 1;
+  for (int j = 0; j < cols; ++j)
+    for (int i = 0; i <= nu; ++i) m.x.push_back(place(i, j));
+  auto id = [&](int i, int j) { return (periodic_v ? j % nv : j) * (nu + 1) + i; };
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      m.tri.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.tri.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+}  // namespace
+
+TriMesh make_ring(double r_in, double r_out, int n_r, int n_phi) {
+  if (!(r_in > 0 && r_out > r_in)) throw InputError("ring mesh: need 0 < r_in < r_out");
+  if (n_r < 1 || n_phi < 6) throw InputError("ring mesh: need n_r >= 1 and n_phi >= 6");
+  return structured(n_r, n_phi, true, [&](int i, int j) {
+    const double r = r_in + (r_out - r_in) * i / n_r, a = 2 * M_PI * j / n_phi;
+    return Vec3(r * std::cos(a), r * std::sin(a), 0.0);
+  });
+}
+
+TriMesh make_rectangle(double lx, double ly, int nx, int ny) {
+  if (!(lx > 0 && ly > 0)) throw InputError("rectangle mesh: sides must be positive");
+  if (nx < 2 || ny < 2) throw InputError("rectangle mesh: need at least 2 x 2 cells");
+  return structured(nx, ny, false,
+                    [&](int i, int j) { return Vec3(lx * i / nx, ly * j / ny, 0.0); });
+}
+
+TriMesh make_sphere(double radius, int refinements) {
+  if (radius <= 0) throw InputError("sphere mesh: radius must be positive");
+  if (refinements < 1 || refinements > 8)
+    throw InputError(
+        "sphere mesh: refinements must be in [1, 8] (one refinement keeps the "
+        "12 valence-5 nodes apart)");
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  TriMesh m;
+  m.x = {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0),
+         Vec3(0, -1, t), Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t),
+         Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)};
+  m.tri = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+           {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+           {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int r = 0; r < refinements; ++r) {
+    refine(m);
+    for (Vec3& p : m.x) p.normalize();
+  }
+  for (Tri& tr : m.tri) {  // outward normals
+    const Vec3 n = (m.x[tr[1]] - m.x[tr[0]]).cross(m.x[tr[2]] - m.x[tr[0]]);
+    if (n.dot(m.x[tr[0]] + m.x[tr[1]] + m.x[tr[2]]) < 0) std::swap(tr[1], tr[2]);
+  }
+  for (Vec3& p : m.x) p *= radius;
+  return m;
+}
+
+// ------------------------------------------------------------------ files
+
+namespace {
+std::string lower_ext(const std::string& path) {
+  auto dot = path.find_last_of('.');
+  std::string e = dot == std::string::npos ? "" : path.substr(dot + 1);
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+[[noreturn]] void bad(const std::string& path, int line, const std::string& what) {
+  throw InputError(path + ":" + std::to_string(line) + ": " + what);
+}
+}  // namespace
+
+TriMesh read_mesh(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot open mesh file '" + path + "'");
+  const std::string ext = lower_ext(path);
+  TriMesh m;
+  std::string line;
+  int ln = 0;
+  if (ext == "obj") {
+    while (std::getline(in, line)) {
+      ++ln;
+      std::istringstream s(line);
+      std::string tag;
+      if (!(s >> tag) || tag[0] == '#') continue;
+      if (tag == "v") {
+        Vec3 p;
+        if (!(s >> p.x() >> p.y() >> p.z())) bad(path, ln, "a vertex needs x y z");
+        m.x.push_back(p);
+      } else if (tag == "f") {
+        std::vector<int> ids;
+        std::string tok;
+        while (s >> tok) {
+          int k = 0;
+          try {
+            k = std::stoi(tok.substr(0, tok.find('/')));
+          } catch (...) {
+            bad(path, ln, "bad face index '" + tok + "'");
+          }
+          ids.push_back(k < 0 ? m.n_nodes() + k : k - 1);
+        }
+        if (ids.size() != 3) bad(path, ln, "only triangles are supported");
+        m.tri.push_back({ids[0], ids[1], ids[2]});
+      }
+    }
+  } else if (ext == "off") {
+    auto next = [&](std::istringstream& s) {
+      while (std::getline(in, line)) {
+        ++ln;
+        auto h = line.find('#');
+        if (h != std::string::npos) line.resize(h);
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        s = std::istringstream(line);
+        return true;
+      }
+      return false;
+    };
+    std::istringstream s;
+    if (!next(s)) bad(path, ln, "empty file");
+    std::string tag;
+    s >> tag;
+    if (tag != "OFF") bad(path, ln, "expected the OFF header");
+    int nv = 0, nf = 0;
+    if (!(s >> nv >> nf)) {
+      if (!next(s) || !(s >> nv >> nf)) bad(path, ln, "expected the vertex and face counts");
+    }
+    for (int i = 0; i < nv; ++i) {
+      Vec3 p;
+      if (!next(s) || !(s >> p.x() >> p.y() >> p.z())) bad(path, ln, "a vertex needs x y z");
+      m.x.push_back(p);
+    }
+    for (int i = 0; i < nf; ++i) {
+      int k = 0;
+      Tri t{};
+      if (!next(s) || !(s >> k) || k != 3 || !(s >> t[0] >> t[1] >> t[2]))
+        bad(path, ln, "only triangles ('3 a b c') are supported");
+      m.tri.push_back(t);
+    }
+  } else {
+    throw InputError("mesh file '" + path + "': unknown extension (use .obj or .off)");
+  }
+  for (const Tri& t : m.tri)
+    for (int k : t)
+      if (k < 0 || k >= m.n_nodes())
+        throw InputError("mesh file '" + path + "': face index out of range");
+  if (m.tri.empty()) throw InputError("mesh file '" + path + "' has no triangles");
+  return m;
+}
+
+void write_mesh(const std::string& path, const TriMesh& m) {
+  const std::string ext = lower_ext(path);
+  std::ofstream out(path);
+  if (!out) throw InputError("cannot write mesh file '" + path + "'");
+  out.precision(17);
+  if (ext == "obj") {
+    for (auto& p : m.x) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    for (auto& t : m.tri) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  } else if (ext == "off") {
+    out << "OFF\n" << m.n_nodes() << ' ' << m.n_tris() << " 0\n";
+    for (auto& p : m.x) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    for (auto& t : m.tri) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  } else {
+    throw InputError("mesh file '" + path + "': unknown extension (use .obj or .off)");
+  }
+}
+
+// ------------------------------------------------------------------ rings
+
+Rings build_rings(int n_nodes, const std::vector<Tri>& tri) {
+  Rings r;
+  r.ring.assign(n_nodes, {});
+  r.closed.assign(n_nodes, 0);
+  r.tris.assign(n_nodes, {});
+  std::vector<std::vector<std::pair<int, int>>> next(n_nodes);
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int v = tri[t][k], a = tri[t][(k + 1) % 3], b = tri[t][(k + 2) % 3];
+      next[v].push_back({a, b});
+      r.tris[v].push_back(t);
+    }
+  for (int v = 0; v < n_nodes; ++v) {
+    auto& nx = next[v];
+    if (nx.empty()) continue;
+    auto succ = [&](int a) {
+      for (auto& [p, q] : nx)
+        if (p == a) return q;
+      return -1;
+    };
+    // an open ring starts at a neighbour that is nobody's successor
+    int start = nx[0].first;
+    for (auto& [p, q] : nx) {
+      bool is_target = false;
+      for (auto& [p2, q2] : nx) is_target |= (q2 == p);
+      if (!is_target) {
+        start = p;
+        break;
+      }
+    }
+    std::vector<int>& ring = r.ring[v];
+    int a = start;
+    for (std::size_t guard = 0; guard <= nx.size() + 1; ++guard) {
+      ring.push_back(a);
+      a = succ(a);
+      if (a < 0) break;
+      if (a == start) {
+        r.closed[v] = 1;
+        break;
+      }
+    }
+    if (ring.size() != nx.size() + (r.closed[v] ? 0 : 1))
+      throw InputError("mesh is not a manifold with consistently oriented triangles (node " +
+                       std::to_string(v) + ")");
+  }
+  return r;
+}
+
+std::vector<int> ring_from(const Rings& r, int v, int first) {
+  const auto& ring = r.ring[v];
+  auto it = std::find(ring.begin(), ring.end(), first);
+  if (it == ring.end()) throw std::logic_error("ring_from: not a neighbour");
+  std::vector<int> out(it, ring.end());
+  out.insert(out.end(), ring.begin(), it);
+  return out;
+}
+
+GhostedMesh add_ghosts(const TriMesh& m) {
+  GhostedMesh g;
+  g.mesh = m;
+  g.n_real_nodes = m.n_nodes();
+  g.n_real_tris = m.n_tris();
+  // directed edges without a reverse are on the boundary
+  std::map<std::pair<int, int>, int> owner;
+  for (int t = 0; t < m.n_tris(); ++t)
+    for (int k = 0; k < 3; ++k) owner[{m.tri[t][k], m.tri[t][(k + 1) % 3]}] = t;
+  std::map<int, int> ghost_after, ghost_before;  // node -> ghost of its outgoing/incoming edge
+  std::vector<char> is_bnd(m.n_nodes(), 0), is_row(m.n_nodes(), 0);
+  for (auto& [e, t] : owner) {
+    if (owner.count({e.second, e.first})) continue;
+    const int p = e.first, q = e.second;
+    int s = -1;
+    for (int k : m.tri[t])
+      if (k != p && k != q) s = k;
+    const int gid = g.mesh.n_nodes();
+    g.mesh.x.push_back(m.x[p] + m.x[q] - m.x[s]);
+    g.mesh.tri.push_back({q, p, gid});
+    g.ghosts.push_back({gid, p, q, s});
+    ghost_after[p] = gid;
+    ghost_before[q] = gid;
+    is_bnd[p] = is_bnd[q] = 1;
+    is_row[s] = 1;
+  }
+  for (auto& [b, ga] : ghost_after) {
+    auto it = ghost_before.find(b);
+    if (it == ghost_before.end())
+      throw InputError("mesh boundary is not a set of closed loops (node " + std::to_string(b) +
+                       ")");
+    g.mesh.tri.push_back({b, it->second, ga});
+  }
+  for (int i = 0; i < m.n_nodes(); ++i) {
+    if (is_bnd[i]) g.boundary.push_back(i);
+    if (is_row[i] && !is_bnd[i]) g.first_row.push_back(i);
+  }
+  g.rings = build_rings(g.mesh.n_nodes(), g.mesh.tri);
+  g.valence.resize(g.mesh.n_nodes());
+  for (int i = 0; i < g.mesh.n_nodes(); ++i)
+    g.valence[i] = static_cast<int>(g.rings.ring[i].size());
+  return g;
+}
+
+void check_patches(const GhostedMesh& g) {
+  for (int t = 0; t < g.n_real_tris; ++t) {
+    int irregular = 0;
+    for (int k : g.mesh.tri[t]) {
+      if (!g.rings.closed[k])
+        throw InputError("shell mesh: node " + std::to_string(k) + " of triangle " +
+                         std::to_string(t) + " has an incomplete 1-ring");
+      if (g.valence[k] != 6) ++irregular;
+      if (g.valence[k] < 3)
+        throw InputError("shell mesh: node " + std::to_string(k) + " has valence " +
+                         std::to_string(g.valence[k]));
+    }
+    if (irregular > 1)
+      throw InputError("shell mesh: triangle " + std::to_string(t) + " has " +
+                       std::to_string(irregular) +
+                       " irregular nodes (valence != 6); Loop elements allow one. Refine the "
+                       "mesh once more (refine = n + 1)");
+  }
+}
+
+}  // namespace slender::shell

@@ -1,0 +1,76 @@
+// Triangle meshes for the shell family (MODELS.md §6.6, §6.7, §6.12): generators,
+// OBJ/OFF input and output, Loop's topological refinement, counter-clockwise
+// 1-rings, and the ghost layer that completes the rings of boundary nodes.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "nodes.hpp"
+
+namespace slender::shell {
+
+using Tri = std::array<int, 3>;
+
+struct TriMesh {
+  std::vector<Vec3> x;
+  std::vector<Tri> tri;  // counter-clockwise seen from the side the normals point to
+  int n_nodes() const { return static_cast<int>(x.size()); }
+  int n_tris() const { return static_cast<int>(tri.size()); }
+};
+
+// --- generators (unit normals along +z for the flat ones)
+// Hexagon of 6 triangles refined `refinements` times, nodes moved radially onto the disc.
+TriMesh make_disc(double radius, int refinements);
+// Structured annulus: n_r rings of edges between r_in and r_out, n_phi nodes round.
+TriMesh make_ring(double r_in, double r_out, int n_r, int n_phi);
+// Structured rectangle [0,lx]x[0,ly] split into nx x ny quads, each with one diagonal
+// in the same direction (valence 6 inside).
+TriMesh make_rectangle(double lx, double ly, int nx, int ny);
+// Icosahedron refined `refinements` times and projected on the sphere.
+TriMesh make_sphere(double radius, int refinements);
+
+// One Loop refinement of the connectivity: every triangle split into four, new
+// nodes at edge midpoints (positions are not smoothed; generators project them).
+void refine(TriMesh& m);
+
+// Reads a Wavefront OBJ ("v" and "f" lines; polygons must be triangles) or an OFF
+// file, chosen by extension; throws with the file and line on bad input.
+TriMesh read_mesh(const std::string& path);
+void write_mesh(const std::string& path, const TriMesh& m);
+
+// Counter-clockwise 1-rings. For node v, next[v] maps a neighbour a to b for every
+// triangle (v, a, b). A ring is closed when it is a cycle.
+struct Rings {
+  std::vector<std::vector<int>> ring;  // ccw neighbours; open rings start at the boundary
+  std::vector<char> closed;
+  std::vector<std::vector<int>> tris;  // triangles incident to each node
+};
+Rings build_rings(int n_nodes, const std::vector<Tri>& tri);
+// The ring of v rotated to start at neighbour `first` (which must be in the ring).
+std::vector<int> ring_from(const Rings& r, int v, int first);
+
+// A mesh with its ghost layer (§6.7): for each boundary edge (b0, b2) with interior
+// triangle (b0, i1, b2) a ghost g = b0 + b2 - i1 and the triangle across the edge;
+// at every boundary node one triangle joining the ghosts of its two boundary edges.
+struct GhostedMesh {
+  TriMesh mesh;  // real nodes first, then ghosts; real triangles first
+  int n_real_nodes = 0;
+  int n_real_tris = 0;
+  struct Ghost {
+    int node, b0, b2, interior;  // g = b0 + b2 - interior (mirror rule (5.34))
+  };
+  std::vector<Ghost> ghosts;
+  std::vector<int> boundary;   // real nodes on the boundary
+  std::vector<int> first_row;  // interior nodes that have a ghost mirrored from them
+  Rings rings;                 // of the completed mesh
+  std::vector<int> valence;    // of the completed mesh (ghost rings may be open)
+};
+GhostedMesh add_ghosts(const TriMesh& m);
+
+// Throws a message naming the triangle when a real triangle has more than one
+// irregular node (valence != 6 in the completed mesh) or an incomplete ring.
+void check_patches(const GhostedMesh& g);
+
+}  // namespace slender::shell

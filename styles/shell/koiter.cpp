@@ -1,0 +1,482 @@
+// Nonlinear Koiter (Kirchhoff–Love) shell on a Loop subdivision surface with
+// in-plane growth (MODELS.md §6.1–§6.8).
+//
+// Energy (§6.3): Phi = sum_p w_p sqrt(abar) 1/2 [C_m alpha^T H alpha + C_b beta^T H beta],
+// alpha = 1/2 (P^T a P - abar), beta = kbar - P^T kappa P, P = Gtilde^-1 (§6.2).
+// Forces are the exact gradient (§6.4), written with the pulled-back resultants
+// Ntilde = P N P^T and Mtilde = P M P^T, which is the Voigt transform T of §6.4
+// applied in tensor form:
+//   dPhi = sum_ab Ntilde_ab a_b . da_a  -  Mtilde : dkappa,
+//   dkappa_ab = da_{a,b} . a3 + a_{a,b} . da3,  da3 = (1/J)(1 - a3 a3^T)(da1 x a2 + a1 x da2).
+// Quadrature (§6.8): 3 points (1/6,1/6), (2/3,1/6), (1/6,2/3), weights 1/6, exact for
+// quadratics and never on a vertex (irregular elements need no limit at a node);
+// quadrature = 1 uses the centroid. Lumped mass by row sums (§6.4).
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+
+#include "registry.hpp"
+#include "shell/loop_patch.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+namespace {
+using Mat2 = Eigen::Matrix2d;
+using Mat3 = Eigen::Matrix3d;
+
+struct GaussPoint {
+  int row0 = 0, nrows = 0;  // stencil rows
+  int element = 0;
+  double w = 0;   // quadrature weight times sqrt(abar)
+  double wq = 0;  // quadrature weight alone
+  Mat2 abar, kbar;
+  Mat3 H;                // H_V of §6.3 from abar^{-1}
+  Vec3 X, a1bar, a2bar;  // reference limit point and tangents
+  Mat2 P = Mat2::Identity();
+  double detG = 1.0;
+};
+}  // namespace
+
+class KoiterShell : public ShellStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("shell", name,
+                "nonlinear Koiter shell on a Loop subdivision surface with in-plane growth "
+                "(MODELS.md §6)");
+    s.string("mesh", "surface created by sim:mesh").required();
+    s.real("thickness", "shell thickness h").required().positive();
+    s.real("young", "Young's modulus Y").def(1e4).positive();
+    s.real("poisson", "Poisson ratio nu").def(0.3).min(-0.99).max(0.499);
+    s.real("density", "mass density rho (mass per volume)").def(1.0).positive();
+    s.string("boundary",
+             "ghost-node rule at free edges (§6.7): combined (free ghosts pulled towards the "
+             "mirror, (5.35)), mirror (u3 = u0 + u2 - u1), free_ghosts (Green), clamped, "
+             "simply_supported")
+        .def(std::string("combined"))
+        .choices({"combined", "mirror", "free_ghosts", "clamped", "simply_supported"});
+    s.real("k_ghost", "spring of the combined method (default Y h)").positive();
+    s.real("ghost_lambda", "dead zone of the ghost spring, fraction of the mean edge")
+        .def(0.1)
+        .nonnegative();
+    s.string("growth", "id of a growth style (sim:growth); none: no growth");
+    s.boolean("growth_area_factor",
+              "integrate over the grown area (det G); false = the thesis (§6.2)")
+        .def(false);
+    s.integer("quadrature", "Gauss points per element: 3 or 1").def(3.0).min(1).max(3);
+    s.vector("load", "uniform load q per reference area (2.32): f_I = q * integral of N_I")
+        .def(std::vector<double>{0, 0, 0})
+        .length(3, 3);
+    return s;
+  }
+
+  KoiterShell(Simulation& sim, const ParamValues& p)
+      : mesh_name_(p.str("mesh")),
+        h_(p.real("thickness")),
+        Y_(p.real("young")),
+        nu_(p.real("poisson")),
+        rho_(p.real("density")),
+        boundary_(p.str("boundary")),
+        k_ghost_(p.has("k_ghost") ? p.real("k_ghost") : p.real("young") * p.real("thickness")),
+        lambda_(p.real("ghost_lambda")),
+        growth_id_(p.has("growth") ? p.str("growth") : ""),
+        area_factor_(p.boolean("growth_area_factor")),
+        nquad_(static_cast<int>(p.integer("quadrature"))),
+        load_(p.vec3("load")) {
+    if (nquad_ == 2) throw InputError("shell 'koiter': quadrature must be 1 or 3");
+    if (!sim.topology().find_surface(mesh_name_))
+      throw InputError("shell 'koiter': no mesh named '" + mesh_name_ +
+                       "' (create it with sim:mesh)");
+    if (!growth_id_.empty()) sim.growth(growth_id_);  // fails early on an unknown id
+    Cm_ = Y_ * h_ / (1 - nu_ * nu_);
+    Cb_ = Y_ * h_ * h_ * h_ / (12 * (1 - nu_ * nu_));
+    precompute(sim);
+  }
+
+  void setup(Simulation& sim) override {
+    if (!growth_id_.empty()) growth_ = &sim.growth(growth_id_);
+    if (!constraints_done_) {
+      apply_constraints(sim);
+      constraints_done_ = true;
+    }
+    update_growth(sim);
+    if (omega_ <= 0) omega_ = estimate_omega(sim);
+  }
+
+  void compute(Simulation& sim) override {
+    if (!growth_id_.empty() && !growth_) growth_ = &sim.growth(growth_id_);
+    update_growth(sim);
+    auto& x = sim.nodes().x;
+    place_ghosts(x);
+    double es = 0, eb = 0;
+    accumulate(x, sim.nodes().f, &es, &eb, true);
+    double ext = 0;
+    if (load_.squaredNorm() > 0) {
+      // consistent nodal loads, Phi_ext = -q . sum_I (integral N_I) u_I
+      const auto& g = mesh();
+      for (int i = 0; i < g.mesh.n_nodes(); ++i) {
+        const double A = lumped_[i] / (rho_ * h_);
+        sim.nodes().f[base_ + i] += A * load_;
+        ext -= A * load_.dot(x[base_ + i] - g.mesh.x[i]);
+      }
+      sim.add_energy("external", ext);
+    }
+    map_ghost_forces(x, sim.nodes().f);
+    stretch_ = es;
+    bend_ = eb;
+    sim.add_energy("stretch", es);
+    sim.add_energy("bend", eb + ghost_energy_);
+  }
+
+  double max_frequency(const Simulation&) const override { return omega_; }
+
+  std::vector<std::string> value_keys() const override {
+    return {"stretch", "bend", "energy", "Eb_hat", "area", "omega", "elements", "nodes"};
+  }
+  double value(const std::string& key) const override {
+    if (key == "stretch") return stretch_;
+    if (key == "bend") return bend_;
+    if (key == "energy") return stretch_ + bend_;
+    if (key == "Eb_hat") return area_ > 0 ? ub_integral_ / area_ : 0.0;
+    if (key == "area") return area_;
+    if (key == "omega") return omega_;
+    if (key == "elements") return n_elem_;
+    if (key == "nodes") return mesh().n_real_nodes;
+    return ShellStyle::value(key);
+  }
+
+  // per-face densities of the last force evaluation (for output)
+  const std::vector<double>& face_bending_density() const { return face_ub_; }
+  const std::vector<double>& face_stretching_density() const { return face_us_; }
+
+ private:
+  const shell::GhostedMesh& mesh() const { return *mesh_; }
+
+  void precompute(Simulation& sim) {
+    const Surface* surface = sim.topology().find_surface(mesh_name_);
+    mesh_ = surface->mesh;
+    base_ = surface->first_node;
+    const auto& g = mesh();
+    n_elem_ = g.n_real_tris;
+    std::vector<std::array<double, 3>> q;  // (v, w, weight)
+    if (nquad_ == 3)
+      q = {{1.0 / 6, 1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}};
+    else
+      q = {{1.0 / 3, 1.0 / 3, 0.5}};
+    std::vector<double> lumped(g.mesh.n_nodes(), 0.0);
+    double edge_sum = 0;
+    int edge_n = 0;
+    lmin_ = 1e300;
+    for (int t = 0; t < n_elem_; ++t) {
+      const shell::Tri c = shell::oriented_element(g, t);
+      for (int k = 0; k < 3; ++k) {
+        const double l = (g.mesh.x[c[k]] - g.mesh.x[c[(k + 1) % 3]]).norm();
+        edge_sum += l;
+        ++edge_n;
+        lmin_ = std::min(lmin_, l);
+      }
+      for (auto& [v, w, wt] : q) {
+        shell::Stencil st = shell::evaluate(g, c, v, w);
+        GaussPoint gp;
+        gp.element = t;
+        gp.row0 = static_cast<int>(rows_.size());
+        gp.nrows = static_cast<int>(st.size());
+        Vec3 X = Vec3::Zero(), a1 = X, a2 = X, a11 = X, a12 = X, a22 = X;
+        for (auto& r : st) {
+          const Vec3& p = g.mesh.x[r.node];
+          X += r.N * p;
+          a1 += r.Nv * p;
+          a2 += r.Nw * p;
+          a11 += r.Nvv * p;
+          a12 += r.Nvw * p;
+          a22 += r.Nww * p;
+          rows_.push_back(r);
+          rows_.back().node += base_;
+        }
+        const Vec3 n = a1.cross(a2);
+        const double J = n.norm();
+        if (!(J > 0)) throw InputError("shell 'koiter': degenerate element " + std::to_string(t));
+        const Vec3 a3 = n / J;
+        gp.X = X;
+        gp.a1bar = a1;
+        gp.a2bar = a2;
+        gp.abar << a1.dot(a1), a1.dot(a2), a1.dot(a2), a2.dot(a2);
+        gp.kbar << a11.dot(a3), a12.dot(a3), a12.dot(a3), a22.dot(a3);
+        const Mat2 ai = gp.abar.inverse();
+        const double i11 = ai(0, 0), i22 = ai(1, 1), i12 = ai(0, 1);
+        gp.H << i11 * i11, nu_ * i11 * i22 + (1 - nu_) * i12 * i12, i11 * i12,  //
+            nu_ * i11 * i22 + (1 - nu_) * i12 * i12, i22 * i22, i22 * i12,      //
+            i11 * i12, i22 * i12, 0.5 * ((1 - nu_) * i11 * i22 + (1 + nu_) * i12 * i12);
+        gp.w = wt * J;
+        gp.wq = wt;
+        for (auto& r : st) lumped[r.node] += rho_ * h_ * r.N * gp.w;
+        gauss_.push_back(gp);
+      }
+    }
+    mean_edge_ = edge_sum / std::max(1, edge_n);
+    face_ub_.assign(n_elem_, 0.0);
+    face_us_.assign(n_elem_, 0.0);
+    lumped_ = lumped;
+  }
+
+  bool kinematic_ghosts() const {
+    return boundary_ == "mirror" || boundary_ == "simply_supported" || boundary_ == "clamped";
+  }
+
+  // masses, and the node masks of the boundary rules
+  void apply_constraints(Simulation& sim) {
+    const auto& g = mesh();
+    auto& m = sim.nodes().mass;
+    std::vector<double> lumped = lumped_;
+    double mean_real = 0;
+    for (int i = 0; i < g.n_real_nodes; ++i) mean_real += lumped[i];
+    mean_real /= g.n_real_nodes;
+    if (kinematic_ghosts())
+      for (auto& gh : g.ghosts) {  // a prescribed ghost's inertia goes to its edge
+        lumped[gh.b0] += 0.5 * lumped[gh.node];
+        lumped[gh.b2] += 0.5 * lumped[gh.node];
+        lumped[gh.node] = mean_real;
+      }
+    for (int i = 0; i < g.mesh.n_nodes(); ++i) m[base_ + i] = lumped[i];
+    if (boundary_ == "combined" || boundary_ == "free_ghosts") return;
+    auto& mask = sim.nodes().require<int>("dof_mask", 0);
+    for (auto& gh : g.ghosts) mask[base_ + gh.node] = 7;
+    if (boundary_ == "simply_supported" || boundary_ == "clamped")
+      for (int b : g.boundary) mask[base_ + b] = 7;
+    if (boundary_ == "clamped")
+      for (int r : g.first_row) mask[base_ + r] = 7;
+    for (int i = 0; i < g.mesh.n_nodes(); ++i)
+      if (mask[base_ + i] == 7) sim.nodes().v[base_ + i].setZero();
+  }
+
+  void update_growth(Simulation& sim) {
+    if (!growth_) return;
+    if (growth_->version() == growth_version_ &&
+        !(growth_->time_dependent() && sim.time != growth_time_))
+      return;
+    growth_version_ = growth_->version();
+    growth_time_ = sim.time;
+    for (auto& gp : gauss_) {
+      const Mat3 G = growth_->tensor(gp.X, sim.time);
+      // mixed components Gtilde^c_a = abar^c . (G abar_a), abar^c = abar^{cd} abar_d
+      const Mat2 ai = gp.abar.inverse();
+      const Vec3 up1 = ai(0, 0) * gp.a1bar + ai(0, 1) * gp.a2bar;
+      const Vec3 up2 = ai(1, 0) * gp.a1bar + ai(1, 1) * gp.a2bar;
+      const Vec3 Ga1 = G * gp.a1bar, Ga2 = G * gp.a2bar;
+      Mat2 Gt;
+      Gt << up1.dot(Ga1), up1.dot(Ga2), up2.dot(Ga1), up2.dot(Ga2);
+      gp.detG = Gt.determinant();
+      if (!(gp.detG > 0))
+        throw InputError("growth '" + growth_id_ + "' gives a non-invertible tensor at (" +
+                         std::to_string(gp.X.x()) + ", " + std::to_string(gp.X.y()) + ", " +
+                         std::to_string(gp.X.z()) + ")");
+      gp.P = Gt.inverse();
+    }
+  }
+
+  // Element energies and forces; f gets -grad. Observables when `observe`.
+  void accumulate(const std::vector<Vec3>& x, std::vector<Vec3>& f, double* es, double* eb,
+                  bool observe) {
+    double Es = 0, Eb = 0, area = 0, ub_int = 0;
+    if (observe) {
+      std::fill(face_ub_.begin(), face_ub_.end(), 0.0);
+      std::fill(face_us_.begin(), face_us_.end(), 0.0);
+      face_area_.assign(n_elem_, 0.0);
+    }
+    for (const GaussPoint& gp : gauss_) {
+      const shell::ShapeRow* R = &rows_[gp.row0];
+      Vec3 a1 = Vec3::Zero(), a2 = a1, a11 = a1, a12 = a1, a22 = a1;
+      for (int r = 0; r < gp.nrows; ++r) {
+        const Vec3& p = x[R[r].node];
+        a1 += R[r].Nv * p;
+        a2 += R[r].Nw * p;
+        a11 += R[r].Nvv * p;
+        a12 += R[r].Nvw * p;
+        a22 += R[r].Nww * p;
+      }
+      const Vec3 n = a1.cross(a2);
+      const double J = n.norm();
+      const Vec3 a3 = n / J;
+      Mat2 a, k;
+      a << a1.dot(a1), a1.dot(a2), a1.dot(a2), a2.dot(a2);
+      k << a11.dot(a3), a12.dot(a3), a12.dot(a3), a22.dot(a3);
+      const Mat2 ah = gp.P.transpose() * a * gp.P;
+      const Mat2 kh = gp.P.transpose() * k * gp.P;
+      const Mat2 al = 0.5 * (ah - gp.abar);
+      const Mat2 be = gp.kbar - kh;
+      const Vec3 alV(al(0, 0), al(1, 1), 2 * al(0, 1));
+      const Vec3 beV(be(0, 0), be(1, 1), 2 * be(0, 1));
+      const Vec3 HalV = gp.H * alV, HbeV = gp.H * beV;
+      const double Us = alV.dot(HalV), Ub = beV.dot(HbeV);
+      const double w = area_factor_ ? gp.w * gp.detG : gp.w;
+      Es += 0.5 * Cm_ * Us * w;
+      Eb += 0.5 * Cb_ * Ub * w;
+      if (observe) {
+        // densities of §6.3/§6.11 over the current area element
+        const double cur = gp.wq * J;
+        area += cur;
+        ub_int += Ub * cur;
+        face_ub_[gp.element] += Ub * cur;
+        face_us_[gp.element] += Us * cur;
+        face_area_[gp.element] += cur;
+      }
+      Mat2 N, M;
+      N << Cm_ * HalV(0), Cm_ * HalV(2), Cm_ * HalV(2), Cm_ * HalV(1);
+      M << Cb_ * HbeV(0), Cb_ * HbeV(2), Cb_ * HbeV(2), Cb_ * HbeV(1);
+      const Mat2 Nt = gp.P * N * gp.P.transpose();
+      const Mat2 Mt = gp.P * M * gp.P.transpose();
+      const Vec3 m1 = Nt(0, 0) * a1 + Nt(0, 1) * a2;
+      const Vec3 m2 = Nt(1, 0) * a1 + Nt(1, 1) * a2;
+      Vec3 c = Mt(0, 0) * a11 + 2 * Mt(0, 1) * a12 + Mt(1, 1) * a22;
+      c -= c.dot(a3) * a3;
+      const Vec3 b1 = a2.cross(c) / J, b2 = c.cross(a1) / J;
+      const Vec3 g1 = w * (m1 - b1), g2 = w * (m2 - b2);
+      const Vec3 g3 = -w * a3;
+      for (int r = 0; r < gp.nrows; ++r) {
+        const shell::ShapeRow& s = R[r];
+        f[s.node] -= s.Nv * g1 + s.Nw * g2 +
+                     (Mt(0, 0) * s.Nvv + 2 * Mt(0, 1) * s.Nvw + Mt(1, 1) * s.Nww) * g3;
+      }
+    }
+    *es = Es;
+    *eb = Eb;
+    if (observe) {
+      area_ = area;
+      ub_integral_ = ub_int;
+      for (int t = 0; t < n_elem_; ++t)
+        if (face_area_[t] > 0) {
+          face_ub_[t] /= face_area_[t];
+          face_us_[t] /= face_area_[t];
+        }
+    }
+  }
+
+  void place_ghosts(std::vector<Vec3>& x) const {
+    const auto& g = mesh();
+    if (boundary_ == "mirror") {
+      for (auto& gh : g.ghosts)
+        x[base_ + gh.node] = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
+    } else if (boundary_ == "simply_supported") {
+      for (auto& gh : g.ghosts)
+        x[base_ + gh.node] = g.mesh.x[gh.node] - (x[base_ + gh.interior] - g.mesh.x[gh.interior]);
+    }
+  }
+
+  // Forces on prescribed ghosts go to the nodes that place them (chain rule);
+  // the combined method pulls free ghosts towards their mirror position (5.35).
+  void map_ghost_forces(const std::vector<Vec3>& x, std::vector<Vec3>& f) {
+    const auto& g = mesh();
+    ghost_energy_ = 0;
+    if (boundary_ == "mirror") {
+      for (auto& gh : g.ghosts) {
+        const Vec3 fg = f[base_ + gh.node];
+        f[base_ + gh.b0] += fg;
+        f[base_ + gh.b2] += fg;
+        f[base_ + gh.interior] -= fg;
+        f[base_ + gh.node].setZero();
+      }
+    } else if (boundary_ == "simply_supported") {
+      for (auto& gh : g.ghosts) {
+        f[base_ + gh.interior] -= f[base_ + gh.node];
+        f[base_ + gh.node].setZero();
+      }
+    } else if (boundary_ == "combined") {
+      const double dead = lambda_ * mean_edge_;
+      for (auto& gh : g.ghosts) {
+        const Vec3 mirror = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
+        const Vec3 d = x[base_ + gh.node] - mirror;
+        const double len = d.norm();
+        if (len <= dead) continue;
+        f[base_ + gh.node] -= k_ghost_ * (len - dead) / len * d;
+        ghost_energy_ += 0.5 * k_ghost_ * (len - dead) * (len - dead);
+      }
+    }
+  }
+
+  // Largest omega of M^-1 K by power iteration on finite differences of the forces
+  // at the current state (free degrees of freedom only), checked against the
+  // membrane wave estimate 2 c / l_min (c^2 = Y / (rho (1 - nu^2))).
+  double estimate_omega(Simulation& sim) {
+    const auto& g = mesh();
+    const int n = g.mesh.n_nodes();
+    std::vector<Vec3> x = sim.nodes().x, f(x.size()), v(n);
+    const Property<int>* mask = sim.nodes().find<int>("dof_mask");
+    auto free = [&](int i) { return !(mask && (*mask)[base_ + i] == 7); };
+    std::mt19937_64 rng(12345);
+    std::uniform_real_distribution<double> uni(-1, 1);
+    for (int i = 0; i < n; ++i) v[i] = free(i) ? Vec3(uni(rng), uni(rng), uni(rng)) : Vec3::Zero();
+    const double eps = 1e-6 * mean_edge_;
+    auto Kv = [&](std::vector<Vec3>& out) {
+      std::vector<Vec3> fp(x.size(), Vec3::Zero()), fm(x.size(), Vec3::Zero());
+      for (int s = 0; s < 2; ++s) {
+        std::vector<Vec3> xs = x;
+        const double sign = s == 0 ? 1.0 : -1.0;
+        for (int i = 0; i < n; ++i) xs[base_ + i] += sign * eps * v[i];
+        place_ghosts(xs);
+        auto& ff = s == 0 ? fp : fm;
+        double a, b;
+        accumulate(xs, ff, &a, &b, false);
+        map_ghost_forces(xs, ff);
+      }
+      for (int i = 0; i < n; ++i)
+        out[i] = free(i) ? Vec3(-(fp[base_ + i] - fm[base_ + i]) / (2 * eps)) : Vec3::Zero();
+    };
+    std::vector<Vec3> kv(n);
+    double lambda = 0;
+    for (int it = 0; it < 60; ++it) {
+      Kv(kv);
+      double vkv = 0, vmv = 0, norm = 0;
+      for (int i = 0; i < n; ++i) {
+        const double m = sim.nodes().mass[base_ + i];
+        vkv += v[i].dot(kv[i]);
+        vmv += m * v[i].squaredNorm();
+      }
+      lambda = vkv / vmv;
+      for (int i = 0; i < n; ++i) {
+        v[i] = kv[i] / sim.nodes().mass[base_ + i];
+        norm = std::max(norm, v[i].norm());
+      }
+      if (!(norm > 0)) break;
+      for (auto& vi : v) vi /= norm;
+    }
+    double omega = std::sqrt(std::max(0.0, lambda));
+    const double wave = 2 * std::sqrt(Y_ / (rho_ * (1 - nu_ * nu_))) / lmin_;
+    // power iteration converges from below; keep a margin
+    omega = std::max(1.1 * omega, 0.5 * wave);
+    if (sim.verbose)
+      std::printf(
+          "shell %s: omega_max %.4g (power iteration, +10%%), membrane wave 2c/l_min "
+          "%.4g, l_min %.4g\n",
+          id().c_str(), omega, wave, lmin_);
+    wave_omega_ = wave;
+    (void)f;
+    return omega;
+  }
+
+  std::string mesh_name_;
+  double h_, Y_, nu_, rho_;
+  std::string boundary_;
+  double k_ghost_, lambda_;
+  std::string growth_id_;
+  bool area_factor_;
+  int nquad_;
+  Vec3 load_;
+  double Cm_ = 0, Cb_ = 0;
+  std::shared_ptr<const shell::GhostedMesh> mesh_;
+  int base_ = 0, n_elem_ = 0;
+  std::vector<shell::ShapeRow> rows_;
+  std::vector<GaussPoint> gauss_;
+  std::vector<double> lumped_;
+  double mean_edge_ = 0, lmin_ = 0;
+  GrowthStyle* growth_ = nullptr;
+  long growth_version_ = -1;
+  double growth_time_ = -1;
+  bool constraints_done_ = false;
+  double omega_ = 0, wave_omega_ = 0;
+  double stretch_ = 0, bend_ = 0, area_ = 0, ub_integral_ = 0, ghost_energy_ = 0;
+  std::vector<double> face_ub_, face_us_, face_area_;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::ShellStyle, "koiter", slender::KoiterShell)

@@ -1,0 +1,258 @@
+// The Koiter shell style (MODELS.md §6.1-§6.5, §7.3): forces are the exact
+// gradient of the energy (with growth and every ghost rule), rigid motions cost
+// nothing, isotropic growth of a flat disc is stress-free, a uniformly loaded
+// plate matches Kirchhoff plate theory, cylindrical bending matches E = D k^2 A / 2,
+// and the Newmark integrator has the stability and damping MODELS.md states.
+#ifdef SLENDER_HAVE_SHELL
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "helpers.hpp"
+#include "shell/loop_patch.hpp"
+#include "shell/surface.hpp"
+#include "shell/trimesh.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+namespace {
+
+std::unique_ptr<Simulation> shell_scene(const shell::TriMesh& m, RawParams sp, double noise = 0) {
+  auto sim = std::make_unique<Simulation>(3, 2);
+  sim->verbose = false;
+  shell::add_surface(*sim, "s", m, noise);
+  sp["mesh"] = std::string("s");
+  sim->add_shell("koiter", sp);
+  return sim;
+}
+
+void randomize(Simulation& sim, double amp, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amp, amp);
+  for (auto& x : sim.nodes().x) x += Vec3(u(rng), u(rng), u(rng));
+}
+
+}  // namespace
+
+TEST(KoiterShell, ForcesAreTheGradientOfTheEnergy) {
+  // (the combined method's ghost spring acts on the ghost only, as in the thesis, so
+  // it is not a gradient; it is tested below)
+  for (std::string boundary : {"mirror", "free_ghosts", "simply_supported"}) {
+    for (bool area : {false, true}) {
+      auto m = shell::make_rectangle(1.0, 0.6, 5, 3);
+      for (auto& x : m.x) x.z() = 0.2 * x.x() * x.x() - 0.1 * x.y();  // curved reference
+      auto sim = std::make_unique<Simulation>(3, 2);
+      sim->verbose = false;
+      shell::add_surface(*sim, "s", m, 0.0);
+      sim->add_growth("g", "econe",
+                      P({{"phi_e", 0.8}, {"center", std::vector<double>{0.45, 0.25, 0}}}));
+      sim->add_shell("koiter", P({{"mesh", std::string("s")},
+                                  {"thickness", 0.05},
+                                  {"boundary", boundary},
+                                  {"growth", std::string("g")},
+                                  {"growth_area_factor", area},
+                                  {"k_ghost", 3.0},
+                                  {"ghost_lambda", 0.0},
+                                  {"load", std::vector<double>{0.1, -0.2, 0.3}}}));
+      randomize(*sim, 0.03, 11);
+      sim->compute_forces();
+      const double e = sim->potential_energy();
+      EXPECT_GT(std::abs(e), 1e-6);
+      const double err = fd_force_error(*sim, 1e-6);
+      EXPECT_LT(err, 2e-6) << boundary << " area factor " << area;
+    }
+  }
+  // the 1-point rule is a gradient too
+  auto sim = shell_scene(
+      shell::make_disc(1.0, 2),
+      P({{"thickness", 0.02}, {"boundary", std::string("mirror")}, {"quadrature", 1.0}}));
+  randomize(*sim, 0.02, 3);
+  EXPECT_LT(fd_force_error(*sim, 1e-6), 2e-6);
+}
+
+// The combined method (5.35): a ghost beyond lambda * mean edge from its mirror
+// position is pulled back by k_ghost (|d| - lambda l), and only the ghost.
+TEST(KoiterShell, CombinedGhostSpring) {
+  auto make = [](const std::string& b) {
+    auto sim = shell_scene(
+        shell::make_disc(1.0, 2),
+        P({{"thickness", 0.02}, {"boundary", b}, {"k_ghost", 50.0}, {"ghost_lambda", 0.1}}));
+    randomize(*sim, 0.01, 4);
+    return sim;
+  };
+  auto comb = make("combined"), free = make("free_ghosts");
+  const auto& surf = comb->topology().surfaces[0];
+  double mean_edge = 0;  // of the disc with 2 refinements: 0.25 on spokes, less round
+  int n = 0;
+  for (int t = 0; t < surf.mesh->n_real_tris; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto& tr = surf.mesh->mesh.tri[t];
+      mean_edge += (surf.mesh->mesh.x[tr[k]] - surf.mesh->mesh.x[tr[(k + 1) % 3]]).norm();
+      ++n;
+    }
+  mean_edge /= n;
+  const auto& gh = surf.mesh->ghosts[0];
+  auto& x = comb->nodes().x;
+  const Vec3 mirror = x[gh.b0] + x[gh.b2] - x[gh.interior];
+  for (double dist : {0.05 * mean_edge, 0.3 * mean_edge}) {
+    x[gh.node] = mirror + Vec3(0, 0, dist);
+    free->nodes().x[gh.node] = x[gh.node];
+    comb->compute_forces();
+    free->compute_forces();
+    const Vec3 df = comb->nodes().f[gh.node] - free->nodes().f[gh.node];
+    const double expect = dist > 0.1 * mean_edge ? -50.0 * (dist - 0.1 * mean_edge) : 0.0;
+    EXPECT_NEAR(df.z(), expect, 1e-9 * (1 + std::abs(expect)));
+    EXPECT_NEAR(df.head<2>().norm(), 0.0, 1e-12);
+    EXPECT_NEAR((comb->nodes().f[gh.b0] - free->nodes().f[gh.b0]).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(KoiterShell, RigidMotionOfACurvedShellCostsNothing) {
+  auto sim = shell_scene(shell::make_sphere(1.0, 2), P({{"thickness", 0.05}}));
+  Eigen::Matrix3d Rot = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  for (auto& x : sim->nodes().x) x = Rot * x + Vec3(0.3, -2, 5);
+  sim->compute_forces();
+  EXPECT_LT(std::abs(sim->potential_energy()), 1e-20);
+  EXPECT_LT(sim->max_force(), 1e-10);
+  // and a real deformation costs energy
+  sim->nodes().x[0] *= 1.01;
+  sim->compute_forces();
+  EXPECT_GT(sim->potential_energy(), 1e-8);
+}
+
+TEST(KoiterShell, IsotropicGrowthOfAFlatDiscIsStressFree) {
+  auto m = shell::make_disc(1.0, 3);
+  auto sim = std::make_unique<Simulation>(3, 2);
+  sim->verbose = false;
+  shell::add_surface(*sim, "s", m, 0.0);
+  sim->add_growth("g", "isotropic", P({{"factor", 1.1}}));
+  sim->add_shell("koiter", P({{"mesh", std::string("s")},
+                              {"thickness", 0.02},
+                              {"growth", std::string("g")},
+                              {"boundary", std::string("mirror")}}));
+  // the grown disc itself: no energy, no force
+  std::vector<Vec3> x0 = sim->nodes().x;
+  for (auto& x : sim->nodes().x) x *= 1.1;
+  sim->compute_forces();
+  EXPECT_LT(sim->potential_energy(), 1e-20);
+  EXPECT_LT(sim->max_force(), 1e-11);
+  // from the ungrown disc, relaxation reaches the flat disc of radius 1.1
+  sim->nodes().x = x0;
+  sim->forces_valid = false;
+  sim->set_integrator("fire", P({{"dt", 1e-3}}));
+  sim->minimize(1e-9, 200000);
+  double rmax = 0, zmax = 0;
+  for (int i : sim->group("s.boundary")) rmax = std::max(rmax, sim->nodes().x[i].norm());
+  for (int i : sim->group("s")) zmax = std::max(zmax, std::abs(sim->nodes().x[i].z()));
+  EXPECT_NEAR(rmax, 1.1, 1e-6);
+  EXPECT_LT(zmax, 1e-10);
+  EXPECT_LT(sim->potential_energy(), 1e-12);
+}
+
+namespace {
+// Centre deflection of a simply supported square plate under a uniform load,
+// relative to Navier's series w = alpha q a^4 / D.
+double plate_error(int n, double* seconds) {
+  const double a = 1.0, h = 0.01, Y = 1e4, nu = 0.3, q = 2e-5;
+  const double D = Y * h * h * h / (12 * (1 - nu * nu));
+  double alpha = 0;  // Navier: 16/(pi^6) sum_{m,n odd} sin(m pi/2) sin(n pi/2) / (m n (m^2+n^2)^2)
+  for (int i = 1; i < 400; i += 2)
+    for (int j = 1; j < 400; j += 2)
+      alpha +=
+          ((((i - 1) / 2 + (j - 1) / 2) % 2) ? -1.0 : 1.0) / (i * j * std::pow(i * i + j * j, 2));
+  alpha *= 16 / std::pow(M_PI, 6);
+  auto sim = shell_scene(shell::make_rectangle(a, a, n, n),
+                         P({{"thickness", h},
+                            {"young", Y},
+                            {"poisson", nu},
+                            {"boundary", std::string("simply_supported")},
+                            {"load", std::vector<double>{0, 0, q}}}));
+  sim->set_integrator("fire", P({}));
+  auto t0 = std::chrono::steady_clock::now();
+  sim->minimize(1e-13, 400000);
+  *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // deflection of the limit surface at the centre node (Loop's limit mask)
+  const auto& surf = sim->topology().surfaces[0];
+  int centre = -1;
+  for (int i = 0; i < surf.mesh->n_real_nodes; ++i)
+    if ((surf.mesh->mesh.x[i] - Vec3(0.5 * a, 0.5 * a, 0)).norm() < 1e-9) centre = i;
+  double w_lim = 0;
+  for (auto& r : shell::limit_mask(*surf.mesh, centre))
+    w_lim += r.N * sim->nodes().x[surf.first_node + r.node].z();
+  const double w_ref = alpha * q * a * a * a * a / D;
+  std::printf("plate n=%d: alpha %.6f, w %.6e, reference %.6e\n", n, alpha, w_lim, w_ref);
+  return std::abs(w_lim / w_ref - 1);
+}
+}  // namespace
+
+TEST(KoiterShell, SimplySupportedPlateUnderUniformLoad) {
+  double t8 = 0, t16 = 0;
+  const double e8 = plate_error(8, &t8), e16 = plate_error(16, &t16);
+  std::printf("plate: error %.3e (8x8, %.2f s), %.3e (16x16, %.2f s)\n", e8, t8, e16, t16);
+  // first order: the simply supported ghost rule u_g = -u_interior mirrors through the
+  // edge midpoint, not across the edge line (MODELS.md §6.7), an O(h) boundary error
+  EXPECT_LT(e16, 0.04);
+  EXPECT_LT(e16, 0.7 * e8);
+}
+
+TEST(KoiterShell, CylindricalBendingEnergy) {
+  // a strip wrapped isometrically on a cylinder of radius rho: E_b -> D k^2 A / 2
+  const double L = 1.0, W = 0.5, h = 0.01, Y = 1e4, nu = 0.3, rho = 1.0;
+  const double D = Y * h * h * h / (12 * (1 - nu * nu));
+  double prev = 1e300;
+  for (int n : {8, 16, 32}) {
+    auto m = shell::make_rectangle(L, W, n, n / 2);
+    auto sim = shell_scene(m, P({{"thickness", h},
+                                 {"young", Y},
+                                 {"poisson", nu},
+                                 {"boundary", std::string("free_ghosts")}}));
+    for (auto& x : sim->nodes().x) {
+      const double s = x.x() - 0.5 * L;
+      x = Vec3(rho * std::sin(s / rho), x.y(), rho * (1 - std::cos(s / rho)));
+    }
+    sim->compute_forces();
+    const double eb = sim->energies().at("bend"), es = sim->energies().at("stretch");
+    const double ref = 0.5 * D / (rho * rho) * L * W;
+    const double err = std::abs(eb / ref - 1);
+    std::printf("cylinder n=%d: E_b/ref - 1 = %.3e, E_s/E_b = %.3e\n", n, eb / ref - 1, es / eb);
+    EXPECT_LT(err, prev);
+    prev = err;
+  }
+  EXPECT_LT(prev, 0.02);
+}
+
+TEST(Newmark, StabilityLimitAndNumericalDamping) {
+  // node on a spring (omega = 1) to a clamped node
+  auto run = [](double gamma, double wdt, long steps) {
+    auto sim = std::make_unique<Simulation>(3, 1);
+    sim->verbose = false;
+    sim->add_chain("c", {Vec3(0, 0, 0), Vec3(1.0, 0, 0)}, 1.0, false);
+    sim->add_bond("spring", P({{"k", 1.0}}));
+    sim->nodes().x[1].x() = 1.001;
+    sim->set_group("a", {0});
+    sim->add_fix("hold", "clamp", P({{"group", std::string("a")}}));
+    sim->set_integrator("newmark", P({{"dt", wdt}, {"gamma", gamma}}));
+    sim->guard.every = 0;
+    sim->guard.ke_factor = 1e300;
+    sim->guard.max_step_fraction = 1e300;
+    sim->guard.max_strain = 1e300;
+    double amax = 0;
+    sim->run(RunOptions{steps, 1, [&](Simulation& s) {
+                          amax = std::max(amax, std::abs(s.nodes().x[1].x() - 1.0));
+                          return !std::isfinite(amax) || amax > 1.0;
+                        }});
+    return std::make_pair(amax / 1e-3, std::abs(sim->nodes().x[1].x() - 1.0) / 1e-3);
+  };
+  // gamma = 1/2: central differences, no decay, stable to omega dt = 2
+  EXPECT_LT(run(0.5, 1.9, 4000).first, 2.0);
+  EXPECT_GT(run(0.5, 2.05, 4000).first, 100.0);
+  // gamma = 1: stable to sqrt(2) and numerically damped
+  EXPECT_LT(run(1.0, 1.40, 4000).first, 1.01);
+  EXPECT_GT(run(1.0, 1.45, 4000).first, 100.0);
+  EXPECT_LT(run(1.0, 0.1, 2000).second, 0.01);  // decays within ~30 periods
+  EXPECT_GT(run(0.5, 0.1, 2000).first, 0.99);   // while central differences keep it
+}
+
+#endif

@@ -59,6 +59,11 @@ class KoiterShell : public ShellStyle {
     s.real("ghost_lambda", "dead zone of the ghost spring, fraction of the mean edge")
         .def(0.1)
         .nonnegative();
+    s.boolean("ghost_reaction",
+              "the ghost spring also acts back on the three nodes that define the mirror "
+              "position, so it derives from an energy (minimisers converge); false = on the "
+              "ghost only, as in the thesis")
+        .def(true);
     s.string("growth", "id of a growth style (sim:growth); none: no growth");
     s.boolean("growth_area_factor",
               "integrate over the grown area (det G); false = the thesis (§6.2)")
@@ -79,6 +84,7 @@ class KoiterShell : public ShellStyle {
         boundary_(p.str("boundary")),
         k_ghost_(p.has("k_ghost") ? p.real("k_ghost") : p.real("young") * p.real("thickness")),
         lambda_(p.real("ghost_lambda")),
+        ghost_reaction_(p.boolean("ghost_reaction")),
         growth_id_(p.has("growth") ? p.str("growth") : ""),
         area_factor_(p.boolean("growth_area_factor")),
         nquad_(static_cast<int>(p.integer("quadrature"))),
@@ -387,7 +393,13 @@ class KoiterShell : public ShellStyle {
         const Vec3 d = x[base_ + gh.node] - mirror;
         const double len = d.norm();
         if (len <= dead) continue;
-        f[base_ + gh.node] -= k_ghost_ * (len - dead) / len * d;
+        const Vec3 fs = k_ghost_ * (len - dead) / len * d;
+        f[base_ + gh.node] -= fs;
+        if (ghost_reaction_) {  // gradient of 1/2 k (|d| - dead)^2 w.r.t. the mirror's nodes
+          f[base_ + gh.b0] += fs;
+          f[base_ + gh.b2] += fs;
+          f[base_ + gh.interior] -= fs;
+        }
         ghost_energy_ += 0.5 * k_ghost_ * (len - dead) * (len - dead);
       }
     }
@@ -457,6 +469,7 @@ class KoiterShell : public ShellStyle {
   double h_, Y_, nu_, rho_;
   std::string boundary_;
   double k_ghost_, lambda_;
+  bool ghost_reaction_;
   std::string growth_id_;
   bool area_factor_;
   int nquad_;

@@ -1,0 +1,287 @@
+// Self-contact of a shell surface (MODELS.md §6.10, (5.36)), frictionless.
+//
+// Broad phase: triangle AABBs (current control mesh, inflated by (h + skin)/2) in
+// cubic voxels of edge max(2 x largest AABB, h); a pair list rebuilt every
+// `rebuild_every` steps or as soon as a node has moved skin/2 since the last build.
+// Topology check: the smallest reference distance d_ref between the vertices of the
+// two triangles; pairs with d_ref = 0 (neighbours) never collide, pairs with
+// d_ref <= h (near neighbours) only while their current normals oppose (n1.n2 < 0,
+// a ridge; Fig. 5.6). Dense phase: closest points of the two control triangles
+// (vertex-triangle and edge-edge), force f = k (h - r)^2 / r^2 along d/r for r < h,
+// r clamped at 1e-3 h, split with the barycentric weights. The force derives from
+// U(r) = k (h^2/r - r + 2 h ln(r/h)), continued linearly below the clamp.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "registry.hpp"
+#include "shell/triangle_distance.hpp"
+#include "shell/trimesh.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+class ShellContactPair : public PairStyle {
+ public:
+  static ParamSpec spec(const std::string& name) {
+    ParamSpec s("pair", name,
+                "self-contact of a shell surface: voxel broad phase, reference-distance topology "
+                "check, faceted dense phase, repulsion k (h-r)^2/r^2 (MODELS.md §6.10, (5.36))");
+    s.string("mesh", "surface created by sim:mesh").required();
+    s.real("thickness", "contact distance h (the shell thickness)").required().positive();
+    s.real("k", "contact stiffness k_ct (default Y h mean_edge)").positive();
+    s.real("young", "Young's modulus for the default k").def(1e4).positive();
+    s.real("skin", "extra reach of the pair list (default h/2)").positive();
+    s.integer("rebuild_every", "steps between pair-list rebuilds (also rebuilt on movement)")
+        .def(20.0)
+        .min(1);
+    return s;
+  }
+  ShellContactPair(Simulation& sim, const ParamValues& p)
+      : h_(p.real("thickness")), every_(p.integer("rebuild_every")) {
+    const Surface* s = sim.topology().find_surface(p.str("mesh"));
+    if (!s) throw InputError("pair 'contact/shell': no mesh named '" + p.str("mesh") + "'");
+    mesh_ = s->mesh;
+    base_ = s->first_node;
+    double sum = 0;
+    int n = 0;
+    const auto& m = mesh_->mesh;
+    for (int t = 0; t < mesh_->n_real_tris; ++t)
+      for (int k = 0; k < 3; ++k) {
+        sum += (m.x[m.tri[t][k]] - m.x[m.tri[t][(k + 1) % 3]]).norm();
+        ++n;
+      }
+    mean_edge_ = sum / n;
+    k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
+    skin_ = p.has("skin") ? p.real("skin") : 0.5 * h_;
+    face_flag_.assign(mesh_->n_real_tris, 0);
+  }
+
+  void setup(Simulation& sim) override {
+    m_min_ = 1e300;
+    for (int i = 0; i < mesh_->n_real_nodes; ++i)
+      m_min_ = std::min(m_min_, sim.nodes().mass[base_ + i]);
+  }
+
+  // stiffness at an overlap of 20% of h, the scale of resolved contacts
+  double max_frequency(const Simulation&) const override {
+    const double r = 0.8 * h_;
+    const double kr = k_ * (2 * (h_ - r) / (r * r) + 2 * (h_ - r) * (h_ - r) / (r * r * r));
+    return std::sqrt(kr / m_min_);
+  }
+
+  double compute(Simulation& sim) override {
+    auto& x = sim.nodes().x;
+    auto& f = sim.nodes().f;
+    if (needs_rebuild(sim)) rebuild(x);
+    ++since_build_;
+    const auto& T = mesh_->mesh.tri;
+    double energy = 0;
+    contacts_ = 0;
+    force_sum_ = 0;
+    std::fill(face_flag_.begin(), face_flag_.end(), 0);
+    points_.clear();
+    forces_.clear();
+    const double rc = 1e-3 * h_;
+    for (const Candidate& c : pairs_) {
+      std::array<Vec3, 3> A, B;
+      for (int k = 0; k < 3; ++k) {
+        A[k] = x[base_ + T[c.t1][k]];
+        B[k] = x[base_ + T[c.t2][k]];
+      }
+      // quick reject on the bounding boxes
+      bool apart = false;
+      for (int ax = 0; ax < 3 && !apart; ++ax) {
+        const double amin = std::min({A[0][ax], A[1][ax], A[2][ax]}),
+                     amax = std::max({A[0][ax], A[1][ax], A[2][ax]});
+        const double bmin = std::min({B[0][ax], B[1][ax], B[2][ax]}),
+                     bmax = std::max({B[0][ax], B[1][ax], B[2][ax]});
+        apart = amin > bmax + h_ || bmin > amax + h_;
+      }
+      if (apart) continue;
+      if (c.near) {
+        const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
+        if (n1.dot(n2) > 0) continue;  // near neighbours touch only across a ridge
+      }
+      const shell::TrianglePair tp = shell::triangle_distance(A, B);
+      if (tp.dist >= h_) continue;
+      Vec3 dir = tp.d;
+      if (tp.dist > 0) {
+        dir /= tp.dist;
+      } else {  // touching: push along the normal of T1
+        dir = (A[1] - A[0]).cross(A[2] - A[0]).normalized();
+      }
+      const double r = std::max(tp.dist, rc);
+      const double mag = k_ * (h_ - r) * (h_ - r) / (r * r);
+      double U = k_ * (h_ * h_ / r - r + 2 * h_ * std::log(r / h_));
+      if (tp.dist < rc) U += mag * (rc - tp.dist);
+      energy += U;
+      const Vec3 fv = mag * dir;
+      for (int k = 0; k < 3; ++k) {
+        f[base_ + T[c.t1][k]] += tp.w1[k] * fv;
+        f[base_ + T[c.t2][k]] -= tp.w2[k] * fv;
+      }
+      ++contacts_;
+      force_sum_ += mag;
+      face_flag_[c.t1] = face_flag_[c.t2] = 1;
+      Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
+      for (int k = 0; k < 3; ++k) {
+        p1 += tp.w1[k] * A[k];
+        p2 += tp.w2[k] * B[k];
+      }
+      points_.push_back(0.5 * (p1 + p2));
+      forces_.push_back(fv);
+    }
+    return energy;
+  }
+
+  std::vector<std::string> value_keys() const override {
+    return {"contacts", "force", "gamma", "pairs", "rebuilds"};
+  }
+  double value(const std::string& key) const override {
+    if (key == "contacts") return contacts_;
+    if (key == "force") return force_sum_;
+    if (key == "gamma") return contact_plane_angle();
+    if (key == "pairs") return static_cast<double>(pairs_.size());
+    if (key == "rebuilds") return static_cast<double>(rebuilds_);
+    return PairStyle::value(key);
+  }
+  const std::vector<char>& face_contact() const { return face_flag_; }
+
+  // Angle between the two contact planes (MODELS.md §6.11): the contact points are
+  // split into two zones (2-means), the forces of each zone averaged with one
+  // orientation; gamma = acos |n1 . n2|. -1 when there are not two zones.
+  double contact_plane_angle() const {
+    const int n = static_cast<int>(points_.size());
+    if (n < 2) return -1;
+    // seeds: the two points farthest apart
+    int s1 = 0, s2 = 0;
+    double best = -1;
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if ((points_[i] - points_[j]).squaredNorm() > best) {
+          best = (points_[i] - points_[j]).squaredNorm();
+          s1 = i;
+          s2 = j;
+        }
+    if (best < (4 * h_) * (4 * h_)) return -1;  // a single zone
+    Vec3 c1 = points_[s1], c2 = points_[s2];
+    std::vector<int> zone(n);
+    for (int it = 0; it < 20; ++it) {
+      Vec3 m1 = Vec3::Zero(), m2 = Vec3::Zero();
+      int n1 = 0, n2 = 0;
+      for (int i = 0; i < n; ++i) {
+        zone[i] = (points_[i] - c1).squaredNorm() <= (points_[i] - c2).squaredNorm() ? 0 : 1;
+        if (zone[i] == 0) {
+          m1 += points_[i];
+          ++n1;
+        } else {
+          m2 += points_[i];
+          ++n2;
+        }
+      }
+      if (n1 == 0 || n2 == 0) return -1;
+      c1 = m1 / n1;
+      c2 = m2 / n2;
+    }
+    Vec3 nz[2];
+    for (int z = 0; z < 2; ++z) {
+      Vec3 ref = Vec3::Zero();
+      for (int i = 0; i < n; ++i)
+        if (zone[i] == z && forces_[i].norm() > ref.norm()) ref = forces_[i];
+      Vec3 sum = Vec3::Zero();
+      for (int i = 0; i < n; ++i)
+        if (zone[i] == z) sum += forces_[i].dot(ref) >= 0 ? forces_[i] : Vec3(-forces_[i]);
+      nz[z] = sum.normalized();
+    }
+    return std::acos(std::min(1.0, std::abs(nz[0].dot(nz[1]))));
+  }
+
+ private:
+  struct Candidate {
+    int t1, t2;
+    bool near;
+  };
+
+  bool needs_rebuild(const Simulation& sim) const {
+    if (built_x_.empty() || since_build_ >= every_) return true;
+    const double lim = 0.25 * skin_ * skin_;
+    for (int i = 0; i < mesh_->n_real_nodes; ++i)
+      if ((sim.nodes().x[base_ + i] - built_x_[i]).squaredNorm() > lim) return true;
+    return false;
+  }
+
+  void rebuild(const std::vector<Vec3>& x) {
+    ++rebuilds_;
+    since_build_ = 0;
+    const auto& T = mesh_->mesh.tri;
+    const auto& X = mesh_->mesh.x;  // reference positions
+    const int nt = mesh_->n_real_tris;
+    built_x_.resize(mesh_->n_real_nodes);
+    for (int i = 0; i < mesh_->n_real_nodes; ++i) built_x_[i] = x[base_ + i];
+    const double pad = 0.5 * (h_ + skin_);
+    std::vector<Vec3> lo(nt), hi(nt);
+    double extent = h_;
+    for (int t = 0; t < nt; ++t) {
+      lo[t] = hi[t] = x[base_ + T[t][0]];
+      for (int k = 1; k < 3; ++k) {
+        lo[t] = lo[t].cwiseMin(x[base_ + T[t][k]]);
+        hi[t] = hi[t].cwiseMax(x[base_ + T[t][k]]);
+      }
+      lo[t].array() -= pad;
+      hi[t].array() += pad;
+      extent = std::max(extent, 2 * (hi[t] - lo[t]).maxCoeff());
+    }
+    const double inv = 1.0 / extent;
+    auto cell = [&](double v) { return static_cast<long>(std::floor(v * inv)); };
+    auto key = [](long i, long j, long k) {
+      return (static_cast<std::uint64_t>(i & 0x1fffff) << 42) |
+             (static_cast<std::uint64_t>(j & 0x1fffff) << 21) |
+             static_cast<std::uint64_t>(k & 0x1fffff);
+    };
+    std::unordered_map<std::uint64_t, std::vector<int>> voxels;
+    for (int t = 0; t < nt; ++t)
+      for (long i = cell(lo[t].x()); i <= cell(hi[t].x()); ++i)
+        for (long j = cell(lo[t].y()); j <= cell(hi[t].y()); ++j)
+          for (long k = cell(lo[t].z()); k <= cell(hi[t].z()); ++k)
+            voxels[key(i, j, k)].push_back(t);
+    std::vector<std::uint64_t> found;
+    for (auto& [k, list] : voxels)
+      for (std::size_t a = 0; a < list.size(); ++a)
+        for (std::size_t b = a + 1; b < list.size(); ++b) {
+          const int t1 = std::min(list[a], list[b]), t2 = std::max(list[a], list[b]);
+          if ((lo[t1].array() > hi[t2].array()).any() || (lo[t2].array() > hi[t1].array()).any())
+            continue;
+          found.push_back((static_cast<std::uint64_t>(t1) << 32) | static_cast<std::uint32_t>(t2));
+        }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    pairs_.clear();
+    for (std::uint64_t id : found) {
+      const int t1 = static_cast<int>(id >> 32), t2 = static_cast<int>(id & 0xffffffffu);
+      double dref = 1e300;
+      for (int a : T[t1])
+        for (int b : T[t2]) dref = std::min(dref, (X[a] - X[b]).norm());
+      if (dref == 0) continue;  // neighbours never collide
+      pairs_.push_back({t1, t2, dref <= h_});
+    }
+  }
+
+  double h_;
+  long every_;
+  std::shared_ptr<const shell::GhostedMesh> mesh_;
+  int base_ = 0;
+  double mean_edge_ = 0, k_ = 0, skin_ = 0, m_min_ = 1;
+  std::vector<Candidate> pairs_;
+  std::vector<Vec3> built_x_;
+  long since_build_ = 0, rebuilds_ = 0;
+  int contacts_ = 0;
+  double force_sum_ = 0;
+  std::vector<char> face_flag_;
+  std::vector<Vec3> points_, forces_;
+};
+
+}  // namespace slender
+
+SLENDER_REGISTER_STYLE(slender::PairStyle, "contact/shell", slender::ShellContactPair)

@@ -1,0 +1,160 @@
+// Shell self-contact (MODELS.md §6.10): closest points of triangles, forces as the
+// gradient of the contact energy, two shells pressed together never interpenetrate,
+// a flat shell is not repelled by its own neighbours, a folded shell is.
+#ifdef SLENDER_HAVE_SHELL
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+#include "helpers.hpp"
+#include "shell/surface.hpp"
+#include "shell/triangle_distance.hpp"
+#include "shell/trimesh.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+namespace {
+shell::TriMesh two_plates(double gap, int n) {
+  shell::TriMesh a = shell::make_rectangle(1.0, 1.0, n, n), b = a;
+  const int off = a.n_nodes();
+  for (auto& x : b.x) {
+    x.z() = gap;
+    a.x.push_back(x);
+  }
+  for (auto t : b.tri) a.tri.push_back({t[0] + off, t[1] + off, t[2] + off});
+  return a;
+}
+}  // namespace
+
+TEST(ShellContact, TriangleDistance) {
+  std::array<Vec3, 3> A{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  // a point above the face, beyond an edge, beyond a vertex
+  auto w = shell::closest_on_triangle(Vec3(0.2, 0.3, 1), A[0], A[1], A[2]);
+  EXPECT_NEAR(w[1], 0.2, 1e-15);
+  EXPECT_NEAR(w[2], 0.3, 1e-15);
+  w = shell::closest_on_triangle(Vec3(0.5, -1, 0.3), A[0], A[1], A[2]);
+  EXPECT_NEAR(w[1], 0.5, 1e-15);
+  EXPECT_NEAR(w[2], 0.0, 1e-15);
+  w = shell::closest_on_triangle(Vec3(2, 2, 0), A[0], A[1], A[2]);
+  EXPECT_NEAR(w[1], 0.5, 1e-15);
+  EXPECT_NEAR(w[2], 0.5, 1e-15);
+  // crossed edges above each other: edge-edge distance
+  std::array<Vec3, 3> B{Vec3(0.5, -0.5, 0.2), Vec3(0.5, 0.5, 0.2), Vec3(2, 0, 0.2)};
+  auto tp = shell::triangle_distance(A, B);
+  EXPECT_NEAR(tp.dist, 0.2, 1e-12);
+  // against brute-force sampling of both triangles
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 20; ++k) {
+    std::array<Vec3, 3> P, Q;
+    for (auto& p : P) p = Vec3(u(rng), u(rng), u(rng));
+    for (auto& q : Q) q = Vec3(u(rng), u(rng), u(rng)) + Vec3(0, 0, 2.5);
+    auto r = shell::triangle_distance(P, Q);
+    double brute = 1e300;
+    const int S = 40;
+    for (int i = 0; i <= S; ++i)
+      for (int j = 0; i + j <= S; ++j) {
+        const Vec3 p = P[0] + (double(i) / S) * (P[1] - P[0]) + (double(j) / S) * (P[2] - P[0]);
+        auto wq = shell::closest_on_triangle(p, Q[0], Q[1], Q[2]);
+        brute = std::min(brute, (p - (wq[0] * Q[0] + wq[1] * Q[1] + wq[2] * Q[2])).norm());
+      }
+    EXPECT_LE(r.dist, brute + 1e-12);
+    EXPECT_GT(r.dist, brute - 0.05);
+  }
+}
+
+TEST(ShellContact, ForcesAreTheGradientOfTheContactEnergy) {
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  // far apart in the reference, brought within h now
+  shell::add_surface(*sim, "s", two_plates(1.0, 2), 0.0);
+  sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", 0.02}, {"k", 3.0}}));
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-0.003, 0.003);
+  for (auto& x : sim->nodes().x) {
+    if (x.z() > 0.5) x.z() -= 1.0 - 0.012;
+    x += Vec3(u(rng), u(rng), u(rng));
+  }
+  sim->compute_forces();
+  EXPECT_GT(sim->find_style("contact/shell")->value("contacts"), 0);
+  EXPECT_GT(sim->potential_energy(), 0);
+  EXPECT_LT(fd_force_error(*sim, 1e-8), 1e-5);
+}
+
+TEST(ShellContact, FlatShellIsNotRepelledByItsNeighbours) {
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  // edges (~0.06) shorter than the thickness: near neighbours exist
+  shell::add_surface(*sim, "s", shell::make_disc(1.0, 4), 1e-3);
+  sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", 0.1}}));
+  sim->compute_forces();
+  EXPECT_EQ(sim->find_style("contact/shell")->value("contacts"), 0);
+  EXPECT_GT(sim->find_style("contact/shell")->value("pairs"), 0);
+  EXPECT_EQ(sim->max_force(), 0.0);
+}
+
+TEST(ShellContact, FoldedShellIsRepelled) {
+  // a strip folded flat on itself: the two halves, far apart along the surface, touch
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  shell::add_surface(*sim, "s", shell::make_rectangle(2.0, 0.5, 16, 4), 0.0);
+  sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", 0.05}}));
+  const double gap = 0.03, R = gap / 2;
+  for (auto& x : sim->nodes().x) {
+    const double s = x.x() - 1.0;  // fold round a half cylinder of radius gap/2 at x = 1
+    if (s <= 0) {
+      x.z() = 0;
+    } else if (s < M_PI * R) {
+      x = Vec3(1.0 + R * std::sin(s / R), x.y(), R * (1 - std::cos(s / R)));
+    } else {
+      x = Vec3(1.0 - (s - M_PI * R), x.y(), gap);
+    }
+  }
+  sim->compute_forces();
+  EXPECT_GT(sim->find_style("contact/shell")->value("contacts"), 10);
+  double fz_top = 0, fz_bottom = 0;
+  Vec3 total = Vec3::Zero();
+  for (int i : sim->group("s")) {
+    const Vec3& x = sim->nodes().x[i];
+    total += sim->nodes().f[i];
+    if (x.x() > 0.9) continue;  // away from the fold
+    (x.z() > gap / 2 ? fz_top : fz_bottom) += sim->nodes().f[i].z();
+  }
+  EXPECT_GT(fz_top, 0);  // the halves are pushed apart
+  EXPECT_LT(fz_bottom, 0);
+  EXPECT_LT(total.norm(), 1e-9 * fz_top);  // action = reaction
+}
+
+TEST(ShellContact, PressedShellsNeverInterpenetrate) {
+  for (double speed : {0.5, 5.0, 20.0}) {
+    auto sim = std::make_unique<Simulation>(3, 1);
+    sim->verbose = false;
+    const double h = 0.02;
+    shell::add_surface(*sim, "s", two_plates(0.05, 6), 0.0);
+    sim->add_shell(
+        "koiter",
+        P({{"mesh", std::string("s")}, {"thickness", h}, {"boundary", std::string("mirror")}}));
+    sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", h}}));
+    std::vector<int> top, bottom;
+    for (int i : sim->group("s")) (sim->nodes().x[i].z() > 0.025 ? top : bottom).push_back(i);
+    for (int i : top) sim->nodes().v[i] = Vec3(0, 0, -speed);
+    sim->set_group("bottom", bottom);
+    sim->add_fix("hold", "clamp", P({{"group", std::string("bottom")}}));
+    sim->set_integrator("newmark", P({{"gamma", 0.5}}));
+    double zmin = 1e300;
+    const long steps = std::lround(0.1 / speed / sim->suggest_dt(0.5)) + 2000;
+    sim->run(RunOptions{steps, 1, [&](Simulation& s) {
+                          for (int i : top) zmin = std::min(zmin, s.nodes().x[i].z());
+                          return false;
+                        }});
+    std::printf("speed %.1f: closest approach %.4f (h = %.2f), %ld steps\n", speed, zmin, h, steps);
+    EXPECT_GT(zmin, 0.0);
+    EXPECT_LT(zmin, h);  // they did touch
+    double vz = 0;
+    for (int i : top) vz += sim->nodes().v[i].z();
+    EXPECT_GT(vz, 0);  // and bounced
+  }
+}
+
+#endif

@@ -580,6 +580,15 @@ int l_minimize(lua_State* L) {
   return 2;
 }
 
+int l_write_dump(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  const std::string id = str_arg(L, 2, "the dump id");
+  auto* d = dynamic_cast<DumpStyle*>(sim.find_style(id));
+  if (!d) throw InputError("write_dump: no dump with id '" + id + "'");
+  if (!sim.forces_valid) sim.compute_forces();
+  d->write(sim);
+  return 0;
+}
 int l_value(lua_State* L) {
   Simulation& sim = sim_arg(L);
   lua_pushnumber(L, sim.column(str_arg(L, 2, "the column name")));
@@ -780,6 +789,7 @@ const luaL_Reg kSimMethods[] = {SLENDER_METHOD("wire", l_wire),
                                 SLENDER_METHOD("run", l_run),
                                 SLENDER_METHOD("minimize", l_minimize),
                                 SLENDER_METHOD("value", l_value),
+                                SLENDER_METHOD("write_dump", l_write_dump),
                                 SLENDER_METHOD("position", l_position),
                                 SLENDER_METHOD("velocity", l_velocity),
                                 SLENDER_METHOD("force", l_force),

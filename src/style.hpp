@@ -34,6 +34,8 @@ class Style {
   virtual double value(const std::string& key) const;
   // Changes parameters between runs (sim:modify). Default: not supported.
   virtual void modify(const RawParams& raw);
+  // Per-element arrays (shell faces) this style offers to dumps, e.g. "Ub"; null if none.
+  virtual const std::vector<double>* face_values(const std::string&) const { return nullptr; }
 
  private:
   std::string style_name_, id_;

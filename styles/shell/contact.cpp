@@ -55,7 +55,7 @@ class ShellContactPair : public PairStyle {
     mean_edge_ = sum / n;
     k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
     skin_ = p.has("skin") ? p.real("skin") : 0.5 * h_;
-    face_flag_.assign(mesh_->n_real_tris, 0);
+    face_flag_.assign(mesh_->n_real_tris, 0.0);
   }
 
   void setup(Simulation& sim) override {
@@ -80,7 +80,7 @@ class ShellContactPair : public PairStyle {
     double energy = 0;
     contacts_ = 0;
     force_sum_ = 0;
-    std::fill(face_flag_.begin(), face_flag_.end(), 0);
+    std::fill(face_flag_.begin(), face_flag_.end(), 0.0);
     points_.clear();
     forces_.clear();
     const double rc = 1e-3 * h_;
@@ -124,7 +124,7 @@ class ShellContactPair : public PairStyle {
       }
       ++contacts_;
       force_sum_ += mag;
-      face_flag_[c.t1] = face_flag_[c.t2] = 1;
+      face_flag_[c.t1] = face_flag_[c.t2] = 1.0;
       Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
       for (int k = 0; k < 3; ++k) {
         p1 += tp.w1[k] * A[k];
@@ -147,7 +147,9 @@ class ShellContactPair : public PairStyle {
     if (key == "rebuilds") return static_cast<double>(rebuilds_);
     return PairStyle::value(key);
   }
-  const std::vector<char>& face_contact() const { return face_flag_; }
+  const std::vector<double>* face_values(const std::string& key) const override {
+    return key == "contact" ? &face_flag_ : nullptr;
+  }
 
   // Angle between the two contact planes (MODELS.md §6.11): the contact points are
   // split into two zones (2-means), the forces of each zone averaged with one
@@ -278,7 +280,7 @@ class ShellContactPair : public PairStyle {
   long since_build_ = 0, rebuilds_ = 0;
   int contacts_ = 0;
   double force_sum_ = 0;
-  std::vector<char> face_flag_;
+  std::vector<double> face_flag_;
   std::vector<Vec3> points_, forces_;
 };
 

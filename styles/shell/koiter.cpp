@@ -55,6 +55,13 @@ class KoiterShell : public ShellStyle {
              "simply_supported")
         .def(std::string("combined"))
         .choices({"combined", "mirror", "free_ghosts", "clamped", "simply_supported"});
+    s.string("ghost_partner",
+             "simply supported edges: the interior node p whose displacement a ghost negates "
+             "(u_g = -u_p): reflection = the node nearest to the ghost's mirror image across "
+             "the edge (2nd order); point = the triangle's third node as printed in MODELS.md "
+             "§6.7 (1st order). Clamped edges always fix boundary, ghosts and first row (§6.7)")
+        .def(std::string("reflection"))
+        .choices({"reflection", "point"});
     s.real("k_ghost", "spring of the combined method (default Y h)").positive();
     s.real("ghost_lambda", "dead zone of the ghost spring, fraction of the mean edge")
         .def(0.1)
@@ -84,6 +91,7 @@ class KoiterShell : public ShellStyle {
         boundary_(p.str("boundary")),
         k_ghost_(p.has("k_ghost") ? p.real("k_ghost") : p.real("young") * p.real("thickness")),
         lambda_(p.real("ghost_lambda")),
+        reflection_(p.str("ghost_partner") == "reflection"),
         ghost_reaction_(p.boolean("ghost_reaction")),
         growth_id_(p.has("growth") ? p.str("growth") : ""),
         area_factor_(p.boolean("growth_area_factor")),
@@ -151,9 +159,12 @@ class KoiterShell : public ShellStyle {
     return ShellStyle::value(key);
   }
 
-  // per-face densities of the last force evaluation (for output)
-  const std::vector<double>& face_bending_density() const { return face_ub_; }
-  const std::vector<double>& face_stretching_density() const { return face_us_; }
+  // per-face densities U_b, U_s (§6.3) of the last force evaluation, for dumps
+  const std::vector<double>* face_values(const std::string& key) const override {
+    if (key == "Ub") return &face_ub_;
+    if (key == "Us") return &face_us_;
+    return nullptr;
+  }
 
  private:
   const shell::GhostedMesh& mesh() const { return *mesh_; }
@@ -220,6 +231,25 @@ class KoiterShell : public ShellStyle {
       }
     }
     mean_edge_ = edge_sum / std::max(1, edge_n);
+    // supported ghosts copy (the negative of) an interior partner
+    partner_.clear();
+    for (auto& gh : g.ghosts) {
+      int best = gh.interior;
+      if (reflection_) {
+        const Vec3 X0 = g.mesh.x[gh.b0], e = (g.mesh.x[gh.b2] - X0).normalized();
+        Vec3 r = g.mesh.x[gh.node] - X0;
+        r -= r.dot(e) * e;
+        const Vec3 image = g.mesh.x[gh.node] - 2 * r;
+        double d = 1e300;
+        for (int b : {gh.b0, gh.b2})
+          for (int k : g.rings.ring[b])
+            if (k < g.n_real_nodes && (g.mesh.x[k] - image).norm() < d) {
+              d = (g.mesh.x[k] - image).norm();
+              best = k;
+            }
+      }
+      partner_.push_back(best);
+    }
     face_ub_.assign(n_elem_, 0.0);
     face_us_.assign(n_elem_, 0.0);
     lumped_ = lumped;
@@ -363,8 +393,10 @@ class KoiterShell : public ShellStyle {
       for (auto& gh : g.ghosts)
         x[base_ + gh.node] = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
     } else if (boundary_ == "simply_supported") {
-      for (auto& gh : g.ghosts)
-        x[base_ + gh.node] = g.mesh.x[gh.node] - (x[base_ + gh.interior] - g.mesh.x[gh.interior]);
+      for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+        const int gn = g.ghosts[k].node, pn = partner_[k];
+        x[base_ + gn] = g.mesh.x[gn] - (x[base_ + pn] - g.mesh.x[pn]);
+      }
     }
   }
 
@@ -382,9 +414,10 @@ class KoiterShell : public ShellStyle {
         f[base_ + gh.node].setZero();
       }
     } else if (boundary_ == "simply_supported") {
-      for (auto& gh : g.ghosts) {
-        f[base_ + gh.interior] -= f[base_ + gh.node];
-        f[base_ + gh.node].setZero();
+      for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+        const int gn = g.ghosts[k].node;
+        f[base_ + partner_[k]] -= f[base_ + gn];
+        f[base_ + gn].setZero();
       }
     } else if (boundary_ == "combined") {
       const double dead = lambda_ * mean_edge_;
@@ -469,6 +502,7 @@ class KoiterShell : public ShellStyle {
   double h_, Y_, nu_, rho_;
   std::string boundary_;
   double k_ghost_, lambda_;
+  bool reflection_;
   bool ghost_reaction_;
   std::string growth_id_;
   bool area_factor_;
@@ -480,6 +514,7 @@ class KoiterShell : public ShellStyle {
   std::vector<shell::ShapeRow> rows_;
   std::vector<GaussPoint> gauss_;
   std::vector<double> lumped_;
+  std::vector<int> partner_;
   double mean_edge_ = 0, lmin_ = 0;
   GrowthStyle* growth_ = nullptr;
   long growth_version_ = -1;

@@ -3,6 +3,7 @@
 -- self-contact ("kissing" excess angle, refined by bisection), then the contact-plane angle gamma.
 -- Run time: -v fast=1 about 15 s; the default (h = 0.02, edge 1/16, phi_e to 12) about 10 min.
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_max=12 -v dphi=0.1 -v out=DIR -v boundary=mirror|combined
+--          -v inner=0.25 grows a ring (annulus R_i <= r <= 1, both edges free; S-4) instead of a disc
 local slender = require("slender")
 
 local fast = slender.var("fast", 0) == 1
@@ -19,12 +20,19 @@ local out = slender.var("out", "econe_out")
 os.execute("mkdir -p " .. out)
 
 local sim = slender.simulation{dimension = 3, seed = slender.var("seed", 1)}
-local nodes, tris = sim:mesh{name = "disc", shape = "disc", radius = 1, edge = edge, noise = 1e-4}
+local inner = slender.var("inner", 0)
+local nodes, tris
+if inner > 0 then
+  nodes, tris = sim:mesh{name = "disc", shape = "ring", radius = 1, inner_radius = inner, edge = edge,
+                         noise = 1e-4}
+else
+  nodes, tris = sim:mesh{name = "disc", shape = "disc", radius = 1, edge = edge, noise = 1e-4}
+end
 sim:growth("g", "econe", {phi_e = 0})
 sim:shell("koiter", {mesh = "disc", thickness = h, young = young, poisson = poisson, growth = "g",
                      boundary = slender.var("boundary", "mirror")})
 sim:pair("contact/shell", {mesh = "disc", thickness = h, young = young})
-sim:compute("rim", "rim_modes", {group = "disc.boundary"})
+sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + inner)})
 sim:integrator("fire", {})
 sim:dump("surface", "shell", {file = out .. "/surface.h5", every = 1000000000, mesh = "disc",
                              faces = {"koiter.Ub", "koiter.Us", "contact/shell.contact"}})
@@ -96,7 +104,7 @@ if slender.var("check", 0) == 1 then
   if wings_before ~= 2 then error("e-cone: " .. wings_before .. " wings before contact, expected 2") end
   if not (phi_ebmax > 0 and phi_ebmax < kiss) then error("e-cone: no E_b_hat maximum before contact") end
 end
-slender.result{h = h, edge = edge, nodes = nodes, triangles = tris,
+slender.result{h = h, edge = edge, inner = inner, nodes = nodes, triangles = tris,
                phi_kiss = kiss or -1, phi_kiss_lo = kiss_lo or -1,
                phi_Ebmax = phi_ebmax, Eb_hat_max = ebmax, wings_before_contact = wings_before,
                gamma_end = sim:value("contact/shell.gamma"), wall_s = wall}

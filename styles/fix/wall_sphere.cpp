@@ -17,7 +17,12 @@ class SphereWallFix : public FixStyle {
                 "rigid spherical (3D) / circular (2D) wall: penalty normal force, dashpot, "
                 "stick-slip friction (MODELS.md §2.3)");
     s.vector("center", "centre of the wall").def(std::vector<double>{0, 0, 0}).length(2, 3);
-    s.real("radius", "wall radius").required().positive();
+    s.real("radius", "wall radius R0").required().positive();
+    s.real("shrink_rate",
+           "the radius shrinks as R(t) = R0 / (1 + rate t) (MODELS.md §7.2 S-6: the confinement "
+           "ratio then grows linearly in time)")
+        .def(0.0)
+        .nonnegative();
     ContactLaw::declare(s);
     s.real("diameter", "node (wire) diameter d: contact starts at |x-c| = R - d/2")
         .def(0.0)
@@ -37,6 +42,8 @@ class SphereWallFix : public FixStyle {
   SphereWallFix(Simulation& sim, const ParamValues& p)
       : c_(p.vec3("center")),
         r_(p.real("radius")),
+        r0_(p.real("radius")),
+        rate_(p.real("shrink_rate")),
         d_(p.real("diameter")),
         law_(ContactLaw::from(
             p, p.real("diameter") > 0 ? p.real("diameter") : 0.01 * p.real("radius"))),
@@ -63,6 +70,7 @@ class SphereWallFix : public FixStyle {
   }
   double post_force(Simulation& sim) override {
     if (law_.frictional() && !xi_) bind(sim);
+    if (rate_ > 0) r_ = r0_ / (1 + rate_ * sim.time);
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
@@ -110,8 +118,9 @@ class SphereWallFix : public FixStyle {
         law_.tangent_stiffness(dref) + (law_.frictional() ? law_.stick_stiffness : 0.0);
     return std::sqrt(k / mmin);
   }
-  std::vector<std::string> value_keys() const override { return {"force", "contacts"}; }
+  std::vector<std::string> value_keys() const override { return {"force", "contacts", "radius"}; }
   double value(const std::string& key) const override {
+    if (key == "radius") return r_;
     if (key == "force") return total_;
     if (key == "contacts") return contacts_;
     return FixStyle::value(key);
@@ -130,7 +139,7 @@ class SphereWallFix : public FixStyle {
   }
 
   Vec3 c_;
-  double r_, d_;
+  double r_, r0_, rate_, d_;
   ContactLaw law_;
   bool inside_;
   std::string group_;

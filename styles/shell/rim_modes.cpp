@@ -21,16 +21,23 @@ class RimModesCompute : public ComputeStyle {
     s.string("group", "rim nodes, e.g. disc.boundary").required();
     s.vector("center", "disc centre").def(std::vector<double>{0, 0, 0}).length(3, 3);
     s.integer("samples", "equally spaced angles of the resampled rim").def(256.0).min(8);
+    s.real("min_radius", "ignore group nodes closer to the axis (the inner edge of a ring)")
+        .def(0.0)
+        .nonnegative();
     return s;
   }
   RimModesCompute(Simulation& sim, const ParamValues& p)
-      : group_(p.str("group")), c_(p.vec3("center")), m_(static_cast<int>(p.integer("samples"))) {
+      : group_(p.str("group")),
+        c_(p.vec3("center")),
+        m_(static_cast<int>(p.integer("samples"))),
+        rmin_(p.real("min_radius")) {
     sim.group(group_);
   }
   void evaluate(Simulation& sim) override {
     std::vector<std::pair<double, double>> pts;  // (angle, height)
     for (int i : sim.group(group_)) {
       const Vec3 r = sim.nodes().x[i] - c_;
+      if (std::hypot(r.x(), r.y()) < rmin_) continue;
       pts.push_back({std::atan2(r.y(), r.x()), r.z()});
     }
     if (pts.size() < 4)
@@ -77,6 +84,7 @@ class RimModesCompute : public ComputeStyle {
   std::string group_;
   Vec3 c_;
   int m_;
+  double rmin_;
   int n_ = 0;
   std::vector<double> amp_;
 };

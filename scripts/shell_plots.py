@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""Plots for the shell examples (examples/shells).
+
+  shell_plots.py render SURFACE.h5 OUT.png [--field koiter.Ub] [--frame -1]
+      the limit surface of a frame written by dump "shell", faces coloured by a
+      per-face field (log scale for U_b), seen from two directions
+  shell_plots.py econe ECONE.csv OUT.png
+      E_b_hat, E_s/E_b and the contact-plane angle gamma against phi_e, with the
+      first self-contact marked
+  shell_plots.py sphere SHRINK.csv GROW.csv OUT.png
+      bending and stretching energy against the confinement f = D / R_s for the
+      shrinking sphere and for growth in a fixed sphere
+"""
+import argparse
+import csv
+import math
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        sys.exit(f"{path}: no rows")
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+def render(args):
+    import h5py
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    with h5py.File(args.surface, "r") as f:
+        tri = f["mesh/triangles"][()].astype(int)
+        pos = f["frames/position/value"][args.frame]
+        name = args.field.replace("/", "|")
+        field = f[f"frames/{name}/value"][args.frame][:, 0] if name in f["frames"] else None
+    fig = plt.figure(figsize=(10, 5))
+    if field is not None:
+        vals = np.log10(np.maximum(field, 1e-12)) if "Ub" in args.field else field
+        norm = plt.Normalize(np.percentile(vals, 2), np.percentile(vals, 98))
+        colours = plt.cm.viridis(norm(vals))
+    else:
+        colours = np.full((len(tri), 4), (0.6, 0.7, 0.9, 1.0))
+    lo, hi = pos.min(axis=0), pos.max(axis=0)
+    c, r = 0.5 * (lo + hi), 0.5 * (hi - lo).max()
+    for k, (elev, azim) in enumerate([(30, -60), (90, -90)]):
+        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
+        poly = Poly3DCollection(pos[tri], facecolors=colours, edgecolor="k", linewidths=0.05)
+        ax.add_collection3d(poly)
+        for axis, set_lim in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+            set_lim(c[axis] - r, c[axis] + r)
+        ax.view_init(elev=elev, azim=azim)
+        ax.set_box_aspect((1, 1, 1))
+        ax.set_axis_off()
+    if field is not None:
+        sm = plt.cm.ScalarMappable(norm=norm, cmap="viridis")
+        label = f"log10 {args.field}" if "Ub" in args.field else args.field
+        fig.colorbar(sm, ax=fig.axes, shrink=0.6, label=label)
+    fig.savefig(args.out, dpi=130)
+    print(f"wrote {args.out}")
+
+
+def econe(args):
+    d = read_csv(args.csv)
+    phi = d["phi_e"]
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    axes[0].plot(phi, d["Eb_hat"], "o-")
+    axes[0].set_ylabel(r"$\hat E_b$")
+    axes[1].plot(phi, d["E_s"] / d["E_b"], "o-")
+    axes[1].set_ylabel(r"$E_s / E_b$")
+    ok = d["gamma"] >= 0
+    axes[2].plot(phi[ok], np.degrees(d["gamma"][ok]), "o-")
+    axes[2].set_ylabel(r"contact-plane angle $\gamma$ (deg)")
+    touch = np.nonzero(d["contacts"] > 0)[0]
+    for ax in axes:
+        ax.set_xlabel(r"excess angle $\phi_e$")
+        if len(touch):
+            ax.axvline(phi[touch[0]], color="r", ls=":", label="first contact")
+    if len(touch):
+        axes[0].legend()
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=120)
+    print(f"wrote {args.out}")
+
+
+def sphere(args):
+    a, b = read_csv(args.shrink), read_csv(args.grow)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for d, label in ((a, "shrinking sphere (S-6)"), (b, "growth in a fixed sphere (S-7)")):
+        axes[0].plot(d["f"], d["E_b"], "o-", label=label)
+        axes[1].plot(d["f"], d["E_s"], "o-", label=label)
+    axes[0].set_ylabel("bending energy")
+    axes[1].set_ylabel("stretching energy")
+    for ax in axes:
+        ax.set_xlabel(r"confinement $f = D / R_s$")
+        ax.legend()
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=120)
+    print(f"wrote {args.out}")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("render")
+    r.add_argument("surface")
+    r.add_argument("out")
+    r.add_argument("--field", default="koiter.Ub")
+    r.add_argument("--frame", type=int, default=-1)
+    e = sub.add_parser("econe")
+    e.add_argument("csv")
+    e.add_argument("out")
+    s = sub.add_parser("sphere")
+    s.add_argument("shrink")
+    s.add_argument("grow")
+    s.add_argument("out")
+    args = p.parse_args()
+    {"render": render, "econe": econe, "sphere": sphere}[args.cmd](args)
+
+
+if __name__ == "__main__":
+    main()

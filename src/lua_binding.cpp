@@ -447,9 +447,65 @@ int l_shell(lua_State* L) {
   lua_pushstring(L, b.id().c_str());
   return 1;
 }
+// Growth from a deck function fn(x, y, z, t) of the reference position and time that
+// returns a scalar g (isotropic), {gxx, gxy, gyx, gyy} (in-plane, world xy) or nine
+// numbers (row by row).
+Eigen::Matrix3d call_growth_function(lua_State* L, int ref, const Vec3& X, double t) {
+  lua_rawgeti(L, LUA_REGISTRYINDEX, ref);
+  lua_pushnumber(L, X.x());
+  lua_pushnumber(L, X.y());
+  lua_pushnumber(L, X.z());
+  lua_pushnumber(L, t);
+  if (lua_pcall(L, 4, 1, 0) != LUA_OK) {
+    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error";
+    lua_pop(L, 1);
+    throw InputError("growth function: " + msg);
+  }
+  Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
+  if (lua_type(L, -1) == LUA_TNUMBER) {
+    G *= lua_tonumber(L, -1);
+  } else if (lua_istable(L, -1)) {
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+    if (n != 4 && n != 9) {
+      lua_pop(L, 1);
+      throw InputError("growth function: return a number, 4 or 9 numbers");
+    }
+    for (lua_Integer k = 1; k <= n; ++k) {
+      lua_rawgeti(L, -1, k);
+      const double v = lua_tonumber(L, -1);
+      lua_pop(L, 1);
+      if (n == 4)
+        G(static_cast<int>((k - 1) / 2), static_cast<int>((k - 1) % 2)) = v;
+      else
+        G(static_cast<int>((k - 1) / 3), static_cast<int>((k - 1) % 3)) = v;
+    }
+  } else {
+    lua_pop(L, 1);
+    throw InputError("growth function: return a number, 4 or 9 numbers");
+  }
+  lua_pop(L, 1);
+  return G;
+}
 int l_growth(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  sim.add_growth(str_arg(L, 2, "the growth id"), str_arg(L, 3, "the growth style"), to_raw(L, 4));
+  const std::string id = str_arg(L, 2, "the growth id"), style = str_arg(L, 3, "the growth style");
+  int ref = LUA_NOREF;
+  if (lua_istable(L, 4)) {
+    lua_getfield(L, 4, "fn");
+    if (lua_isfunction(L, -1))
+      ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    else
+      lua_pop(L, 1);
+  }
+  auto& g = sim.add_growth(id, style, to_raw(L, 4, {"fn"}));
+  if (g.wants_function()) {
+    if (ref == LUA_NOREF)
+      throw InputError("growth '" + style + "' needs fn = function(x, y, z, t)");
+    g.set_function(
+        [L, ref](const Vec3& X, double t) { return call_growth_function(L, ref, X, t); });
+  } else if (ref != LUA_NOREF) {
+    throw InputError("growth '" + style + "' takes no fn");
+  }
   return 0;
 }
 int l_fix(lua_State* L) {

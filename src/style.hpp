@@ -2,6 +2,7 @@
 // in at construction; it requests the node properties it needs there.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -103,6 +104,10 @@ class GrowthStyle : public Style {
   virtual Eigen::Matrix3d tensor(const Vec3& X, double time) const = 0;
   // Depends on time by itself (not only through sim:modify).
   virtual bool time_dependent() const { return false; }
+  // Styles defined by a deck function receive it here (growth "function").
+  using Function = std::function<Eigen::Matrix3d(const Vec3&, double)>;
+  virtual bool wants_function() const { return false; }
+  virtual void set_function(Function) {}
   // Bumped by modify(), so shells know when to recompute their growth data.
   long version() const { return version_; }
 

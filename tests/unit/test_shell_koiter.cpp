@@ -261,4 +261,37 @@ TEST(Newmark, StabilityLimitAndNumericalDamping) {
   EXPECT_GT(run(0.5, 0.1, 2000).first, 0.99);   // while central differences keep it
 }
 
+// The adaptive step follows the local error estimate eta = dt^2/6 |a+ - a| / l_min:
+// on an oscillator of amplitude A, eta ~ A omega^3 dt^3 / 6, so dt ~ tol^(1/3).
+TEST(Newmark, AdaptiveStepFollowsTheErrorEstimate) {
+  auto settle = [](double tol) {
+    auto sim = std::make_unique<Simulation>(3, 1);
+    sim->verbose = false;
+    sim->add_chain("c", {Vec3(0, 0, 0), Vec3(1.0, 0, 0)}, 1.0, false);
+    sim->add_bond("spring", P({{"k", 1.0}}));
+    sim->nodes().x[1].x() = 1.1;
+    sim->set_group("a", {0});
+    sim->add_fix("hold", "clamp", P({{"group", std::string("a")}}));
+    sim->set_integrator("newmark",
+                        P({{"dt", 1e-4}, {"gamma", 0.5}, {"adaptive", true}, {"tol", tol}}));
+    sim->guard.max_strain = 1e300;
+    double eta_max = 0, dt_sum = 0;
+    long n = 0;
+    sim->run(RunOptions{3000, 1, [&](Simulation& s) {
+                          eta_max = std::max(eta_max, s.integrator()->value("eta"));
+                          if (s.step > 1000) {
+                            dt_sum += s.dt;
+                            ++n;
+                          }
+                          return false;
+                        }});
+    EXPECT_LE(eta_max, tol);  // every accepted step is within tolerance
+    return dt_sum / n;
+  };
+  const double dt1 = settle(1e-8), dt2 = settle(1e-8 / 8);
+  std::printf("adaptive Newmark: mean dt %.4g (tol 1e-8), %.4g (tol 1.25e-9)\n", dt1, dt2);
+  EXPECT_GT(dt1, 1e-3);              // grew from the initial 1e-4
+  EXPECT_NEAR(dt2 / dt1, 0.5, 0.1);  // dt ~ tol^(1/3)
+}
+
 #endif

@@ -1,7 +1,8 @@
 // Self-contact of a shell surface (MODELS.md §6.10, (5.36)), frictionless.
 //
 // Broad phase: triangle AABBs (current control mesh, inflated by (h + skin)/2) in
-// cubic voxels of edge max(2 x largest AABB, h); a pair list rebuilt every
+// cubic voxels of edge max(largest AABB, h), so a box spans at most 2 voxels per
+// axis (MODELS.md suggests twice that; smaller voxels hold fewer pairs); a pair list rebuilt every
 // `rebuild_every` steps or as soon as a node has moved skin/2 since the last build.
 // Topology check: the smallest reference distance d_ref between the vertices of the
 // two triangles; pairs with d_ref = 0 (neighbours) never collide, pairs with
@@ -32,7 +33,7 @@ class ShellContactPair : public PairStyle {
     s.real("thickness", "contact distance h (the shell thickness)").required().positive();
     s.real("k", "contact stiffness k_ct (default Y h mean_edge)").positive();
     s.real("young", "Young's modulus for the default k").def(1e4).positive();
-    s.real("skin", "extra reach of the pair list (default h/2)").positive();
+    s.real("skin", "extra reach of the pair list (default h)").positive();
     s.integer("rebuild_every", "steps between pair-list rebuilds (also rebuilt on movement)")
         .def(20.0)
         .min(1);
@@ -54,7 +55,7 @@ class ShellContactPair : public PairStyle {
       }
     mean_edge_ = sum / n;
     k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
-    skin_ = p.has("skin") ? p.real("skin") : 0.5 * h_;
+    skin_ = p.has("skin") ? p.real("skin") : h_;
     face_flag_.assign(mesh_->n_real_tris, 0.0);
   }
 
@@ -84,26 +85,28 @@ class ShellContactPair : public PairStyle {
     points_.clear();
     forces_.clear();
     const double rc = 1e-3 * h_;
+    // bounding boxes of this step, once per triangle
+    const int nt = mesh_->n_real_tris;
+    box_lo_.resize(nt);
+    box_hi_.resize(nt);
+    for (int t = 0; t < nt; ++t) {
+      const Vec3 &a = x[base_ + T[t][0]], &b = x[base_ + T[t][1]], &c = x[base_ + T[t][2]];
+      box_lo_[t] = a.cwiseMin(b).cwiseMin(c).array() - 0.5 * h_;
+      box_hi_[t] = a.cwiseMax(b).cwiseMax(c).array() + 0.5 * h_;
+    }
     for (const Candidate& c : pairs_) {
+      // boxes grown by h/2 that do not overlap: more than h apart
+      if ((box_lo_[c.t1].array() > box_hi_[c.t2].array()).any() ||
+          (box_lo_[c.t2].array() > box_hi_[c.t1].array()).any())
+        continue;
       std::array<Vec3, 3> A, B;
       for (int k = 0; k < 3; ++k) {
         A[k] = x[base_ + T[c.t1][k]];
         B[k] = x[base_ + T[c.t2][k]];
       }
-      // quick reject on the bounding boxes
-      bool apart = false;
-      for (int ax = 0; ax < 3 && !apart; ++ax) {
-        const double amin = std::min({A[0][ax], A[1][ax], A[2][ax]}),
-                     amax = std::max({A[0][ax], A[1][ax], A[2][ax]});
-        const double bmin = std::min({B[0][ax], B[1][ax], B[2][ax]}),
-                     bmax = std::max({B[0][ax], B[1][ax], B[2][ax]});
-        apart = amin > bmax + h_ || bmin > amax + h_;
-      }
-      if (apart) continue;
-      if (c.near) {
-        const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
-        if (n1.dot(n2) > 0) continue;  // near neighbours touch only across a ridge
-      }
+      const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
+      if (c.near && n1.dot(n2) > 0) continue;  // near neighbours touch only across a ridge
+      if (separated(A, B, n1, n2)) continue;
       const shell::TrianglePair tp = shell::triangle_distance(A, B);
       if (tp.dist >= h_) continue;
       Vec3 dir = tp.d;
@@ -206,6 +209,32 @@ class ShellContactPair : public PairStyle {
     bool near;
   };
 
+  // Separating-axis test with margin h on the face normals and the in-plane edge
+  // normals of both triangles: most pairs of the list (neighbours lying side by side)
+  // are rejected here, before the 15 closest-point problems of the dense phase.
+  bool separated(const std::array<Vec3, 3>& A, const std::array<Vec3, 3>& B, const Vec3& n1,
+                 const Vec3& n2) const {
+    auto apart = [&](const Vec3& axis) {
+      const double len = axis.norm();
+      if (len == 0) return false;
+      double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
+      for (int k = 0; k < 3; ++k) {
+        const double pa = A[k].dot(axis), pb = B[k].dot(axis);
+        a0 = std::min(a0, pa);
+        a1 = std::max(a1, pa);
+        b0 = std::min(b0, pb);
+        b1 = std::max(b1, pb);
+      }
+      return a0 > b1 + h_ * len || b0 > a1 + h_ * len;
+    };
+    if (apart(n1) || apart(n2)) return true;
+    for (int k = 0; k < 3; ++k) {
+      if (apart((A[(k + 1) % 3] - A[k]).cross(n1))) return true;
+      if (apart((B[(k + 1) % 3] - B[k]).cross(n2))) return true;
+    }
+    return false;
+  }
+
   bool needs_rebuild(const Simulation& sim) const {
     if (built_x_.empty() || since_build_ >= every_) return true;
     const double lim = 0.25 * skin_ * skin_;
@@ -233,7 +262,7 @@ class ShellContactPair : public PairStyle {
       }
       lo[t].array() -= pad;
       hi[t].array() += pad;
-      extent = std::max(extent, 2 * (hi[t] - lo[t]).maxCoeff());
+      extent = std::max(extent, (hi[t] - lo[t]).maxCoeff());
     }
     const double inv = 1.0 / extent;
     auto cell = [&](double v) { return static_cast<long>(std::floor(v * inv)); };
@@ -248,17 +277,19 @@ class ShellContactPair : public PairStyle {
         for (long j = cell(lo[t].y()); j <= cell(hi[t].y()); ++j)
           for (long k = cell(lo[t].z()); k <= cell(hi[t].z()); ++k)
             voxels[key(i, j, k)].push_back(t);
+    // each overlapping pair is taken in one voxel only: the one holding the lower
+    // corner of the intersection of the two boxes (no duplicates, no sort)
     std::vector<std::uint64_t> found;
-    for (auto& [k, list] : voxels)
+    for (auto& [vk, list] : voxels)
       for (std::size_t a = 0; a < list.size(); ++a)
         for (std::size_t b = a + 1; b < list.size(); ++b) {
           const int t1 = std::min(list[a], list[b]), t2 = std::max(list[a], list[b]);
           if ((lo[t1].array() > hi[t2].array()).any() || (lo[t2].array() > hi[t1].array()).any())
             continue;
+          const Vec3 corner = lo[t1].cwiseMax(lo[t2]);
+          if (key(cell(corner.x()), cell(corner.y()), cell(corner.z())) != vk) continue;
           found.push_back((static_cast<std::uint64_t>(t1) << 32) | static_cast<std::uint32_t>(t2));
         }
-    std::sort(found.begin(), found.end());
-    found.erase(std::unique(found.begin(), found.end()), found.end());
     pairs_.clear();
     for (std::uint64_t id : found) {
       const int t1 = static_cast<int>(id >> 32), t2 = static_cast<int>(id & 0xffffffffu);
@@ -276,7 +307,7 @@ class ShellContactPair : public PairStyle {
   int base_ = 0;
   double mean_edge_ = 0, k_ = 0, skin_ = 0, m_min_ = 1;
   std::vector<Candidate> pairs_;
-  std::vector<Vec3> built_x_;
+  std::vector<Vec3> built_x_, box_lo_, box_hi_;
   long since_build_ = 0, rebuilds_ = 0;
   int contacts_ = 0;
   double force_sum_ = 0;

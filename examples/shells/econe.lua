@@ -4,6 +4,7 @@
 -- Run time: -v fast=1 about 15 s; the default (h = 0.02, edge 1/16, phi_e to 12) about 10 min.
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_max=12 -v dphi=0.1 -v out=DIR -v boundary=mirror|combined
 --          -v inner=0.25 grows a ring (annulus R_i <= r <= 1, both edges free; S-4) instead of a disc
+--          -v mode=3 -v mode_amp=1e-3 starts from z = amp r^2 cos(3 phi) (the n = 3 e-cone of S-5)
 local slender = require("slender")
 
 local fast = slender.var("fast", 0) == 1
@@ -21,12 +22,22 @@ os.execute("mkdir -p " .. out)
 
 local sim = slender.simulation{dimension = 3, seed = slender.var("seed", 1)}
 local inner = slender.var("inner", 0)
+local noise = slender.var("noise", 1e-4)  -- out-of-plane noise amplitude (MODELS.md §6.12)
 local nodes, tris
 if inner > 0 then
   nodes, tris = sim:mesh{name = "disc", shape = "ring", radius = 1, inner_radius = inner, edge = edge,
-                         noise = 1e-4}
+                         noise = noise}
 else
-  nodes, tris = sim:mesh{name = "disc", shape = "disc", radius = 1, edge = edge, noise = 1e-4}
+  nodes, tris = sim:mesh{name = "disc", shape = "disc", radius = 1, edge = edge, noise = noise}
+end
+-- an initial shape with n wings (S-5), on top of the random noise
+local mode, mode_amp = slender.var("mode", 0), slender.var("mode_amp", 1e-3)
+if mode > 0 then
+  for i = 1, nodes do
+    local x, y, z = sim:position(i)
+    local r, a = math.sqrt(x * x + y * y), math.atan(y, x)
+    sim:set_position(i, {x, y, z + mode_amp * r * r * math.cos(mode * a)})
+  end
 end
 sim:growth("g", "econe", {phi_e = 0})
 sim:shell("koiter", {mesh = "disc", thickness = h, young = young, poisson = poisson, growth = "g",

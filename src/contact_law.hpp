@@ -93,11 +93,18 @@ struct ContactLaw {
     if (elastic_energy) *elastic_energy = fe * overlap / (exponent + 1.0);
     const double fn = std::max(0.0, fe - damping * vn);
     if (normal) *normal = fn;
-    Vec3 f = fn * n;
+    return fn * n + friction(fn, n, v, dt, st);
+  }
+
+  // Stick-slip friction on the first body for a normal force fn along n and the
+  // relative velocity v = v_1 - v_2 (its normal part is ignored); updates st.
+  Vec3 friction(double fn, const Vec3& n, const Vec3& v, double dt, FrictionState& st) const {
     if (!frictional()) {
       st.active = true;
-      return f;
+      return Vec3::Zero();
     }
+    const double vn = v.dot(n);
+    const Vec3 f = Vec3::Zero();
     const Vec3 vt = v - vn * n;
     const double vt_norm = vt.norm();
     if (!st.active || (!st.stick && vt_norm < slip_velocity)) {
@@ -130,7 +137,7 @@ struct ContactLaw {
         st.stick = false;
       }
       st.xi = dir;
-      f -= (mu_dynamic * fn) * dir;
+      return f - (mu_dynamic * fn) * dir;
     }
     return f;
   }

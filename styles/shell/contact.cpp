@@ -16,6 +16,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "contact_law.hpp"
 #include "registry.hpp"
 #include "shell/triangle_distance.hpp"
 #include "shell/trimesh.hpp"
@@ -37,10 +38,20 @@ class ShellContactPair : public PairStyle {
     s.integer("rebuild_every", "steps between pair-list rebuilds (also rebuilt on movement)")
         .def(20.0)
         .min(1);
+    s.real("mu_static",
+           "static friction between contacting areas (MODELS.md §6.10: the stabilised symmetric "
+           "e-cone, S-2), stick-slip as in §2.3; sim:modify can change it (0: release)")
+        .def(0.0)
+        .nonnegative();
+    s.real("mu_dynamic", "dynamic friction coefficient (default 0.9 mu_static)").nonnegative();
+    s.real("stick_stiffness", "tangential stick spring per contact (default k)").positive();
+    s.real("slip_velocity", "slipping contacts slower than this stick again")
+        .def(1e-4)
+        .nonnegative();
     return s;
   }
   ShellContactPair(Simulation& sim, const ParamValues& p)
-      : h_(p.real("thickness")), every_(p.integer("rebuild_every")) {
+      : mesh_name_(p.str("mesh")), h_(p.real("thickness")), every_(p.integer("rebuild_every")) {
     const Surface* s = sim.topology().find_surface(p.str("mesh"));
     if (!s) throw InputError("pair 'contact/shell': no mesh named '" + p.str("mesh") + "'");
     mesh_ = s->mesh;
@@ -56,7 +67,33 @@ class ShellContactPair : public PairStyle {
     mean_edge_ = sum / n;
     k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
     skin_ = p.has("skin") ? p.real("skin") : h_;
+    set_friction(p);
     face_flag_.assign(mesh_->n_real_tris, 0.0);
+  }
+
+  void set_friction(const ParamValues& p) {
+    friction_.mu_static = p.real("mu_static");
+    friction_.mu_dynamic = p.has("mu_dynamic") ? p.real("mu_dynamic") : 0.9 * friction_.mu_static;
+    friction_.stick_stiffness = p.has("stick_stiffness") ? p.real("stick_stiffness") : k_;
+    friction_.slip_velocity = p.real("slip_velocity");
+    if (friction_.mu_dynamic > friction_.mu_static)
+      throw InputError("pair 'contact/shell': mu_dynamic must not exceed mu_static");
+  }
+  // Friction can be switched on and off between runs (S-2 releases it at phi_e = 10).
+  void modify(const RawParams& raw) override {
+    RawParams full = raw;
+    for (auto& kv : raw)
+      if (kv.first != "mu_static" && kv.first != "mu_dynamic" && kv.first != "stick_stiffness" &&
+          kv.first != "slip_velocity")
+        throw InputError("pair 'contact/shell': modify accepts only the friction keys, not '" +
+                         kv.first + "'");
+    full["mesh"] = mesh_name_;
+    full["thickness"] = h_;
+    if (!full.count("mu_static")) full["mu_static"] = friction_.mu_static;
+    if (!full.count("stick_stiffness")) full["stick_stiffness"] = friction_.stick_stiffness;
+    set_friction(spec(style_name()).validate(full));
+    if (!friction_.frictional())
+      for (auto& c : pairs_) c.friction = FrictionState{};
   }
 
   void setup(Simulation& sim) override {
@@ -94,7 +131,8 @@ class ShellContactPair : public PairStyle {
       box_lo_[t] = a.cwiseMin(b).cwiseMin(c).array() - 0.5 * h_;
       box_hi_[t] = a.cwiseMax(b).cwiseMax(c).array() + 0.5 * h_;
     }
-    for (const Candidate& c : pairs_) {
+    auto& v = sim.nodes().v;
+    for (Candidate& c : pairs_) {
       // boxes grown by h/2 that do not overlap: more than h apart
       if ((box_lo_[c.t1].array() > box_hi_[c.t2].array()).any() ||
           (box_lo_[c.t2].array() > box_hi_[c.t1].array()).any())
@@ -108,7 +146,10 @@ class ShellContactPair : public PairStyle {
       if (c.near && n1.dot(n2) > 0) continue;  // near neighbours touch only across a ridge
       if (separated(A, B, n1, n2)) continue;
       const shell::TrianglePair tp = shell::triangle_distance(A, B);
-      if (tp.dist >= h_) continue;
+      if (tp.dist >= h_) {
+        c.friction.active = false;
+        continue;
+      }
       Vec3 dir = tp.d;
       if (tp.dist > 0) {
         dir /= tp.dist;
@@ -120,7 +161,13 @@ class ShellContactPair : public PairStyle {
       double U = k_ * (h_ * h_ / r - r + 2 * h_ * std::log(r / h_));
       if (tp.dist < rc) U += mag * (rc - tp.dist);
       energy += U;
-      const Vec3 fv = mag * dir;
+      Vec3 fv = mag * dir;
+      if (friction_.frictional()) {
+        Vec3 vrel = Vec3::Zero();
+        for (int k = 0; k < 3; ++k)
+          vrel += tp.w1[k] * v[base_ + T[c.t1][k]] - tp.w2[k] * v[base_ + T[c.t2][k]];
+        fv += friction_.friction(mag, dir, vrel, sim.dt, c.friction);
+      }
       for (int k = 0; k < 3; ++k) {
         f[base_ + T[c.t1][k]] += tp.w1[k] * fv;
         f[base_ + T[c.t2][k]] -= tp.w2[k] * fv;
@@ -207,6 +254,7 @@ class ShellContactPair : public PairStyle {
   struct Candidate {
     int t1, t2;
     bool near;
+    FrictionState friction;  // history of the stick spring (frictional contacts)
   };
 
   // Separating-axis test with margin h on the face normals and the in-plane edge
@@ -290,6 +338,13 @@ class ShellContactPair : public PairStyle {
           if (key(cell(corner.x()), cell(corner.y()), cell(corner.z())) != vk) continue;
           found.push_back((static_cast<std::uint64_t>(t1) << 32) | static_cast<std::uint32_t>(t2));
         }
+    // friction history survives the rebuild for pairs that stay in the list
+    std::unordered_map<std::uint64_t, FrictionState> history;
+    if (friction_.frictional())
+      for (auto& c : pairs_)
+        if (c.friction.active)
+          history[(static_cast<std::uint64_t>(c.t1) << 32) | static_cast<std::uint32_t>(c.t2)] =
+              c.friction;
     pairs_.clear();
     for (std::uint64_t id : found) {
       const int t1 = static_cast<int>(id >> 32), t2 = static_cast<int>(id & 0xffffffffu);
@@ -297,12 +352,16 @@ class ShellContactPair : public PairStyle {
       for (int a : T[t1])
         for (int b : T[t2]) dref = std::min(dref, (X[a] - X[b]).norm());
       if (dref == 0) continue;  // neighbours never collide
-      pairs_.push_back({t1, t2, dref <= h_});
+      Candidate cand{t1, t2, dref <= h_, FrictionState{}};
+      if (auto it = history.find(id); it != history.end()) cand.friction = it->second;
+      pairs_.push_back(cand);
     }
   }
 
+  std::string mesh_name_;
   double h_;
   long every_;
+  ContactLaw friction_;
   std::shared_ptr<const shell::GhostedMesh> mesh_;
   int base_ = 0;
   double mean_edge_ = 0, k_ = 0, skin_ = 0, m_min_ = 1;

@@ -3,13 +3,14 @@
 -- to rest, and the force on the channel nodes is read; then the feed goes on, up
 -- to jamming. Writes force_samples.csv (phi, force, ...); scripts/crumple_stats.py fits
 -- F ~ (phi_c - phi)^beta.
--- Expected run time: f = 10 (fast mode, -v f=10): ~1 min; f = 25: about an hour.
+-- Expected run time: f = 10 (fast mode, -v fast=1): ~1 min; f = 25: about an hour.
 -- (Cavities below f = 10 jam at once: the buckled wire grips the wall, mu_st = 5.)
 -- Thesis parameters: f = 25, kappa_theta = 0.08, mu_st = 5, s = 0.05 (feed speed;
 -- 0.06 in the thesis' text). Elastic variant: -v yield=4.
 local scene = require("lib.scene")
-local sim, ctx = scene.build { name = "force", f = 25, yield = 0.08, mu = 5.0, s = 0.05 }
-local dphi = slender.var("dphi", 0.025)
+-- -v fast=1: f = 10 to jamming with samples every 0.05
+local sim, ctx = scene.build { name = "force", f = 25, yield = 0.08, mu = 5.0, s = 0.05, fast_max_phi = 1.0 }
+local dphi = slender.var("dphi", slender.var("fast", 0) == 1 and 0.05 or 0.025)
 -- at rest: kinetic energy per node below 1e-8 k1 l0^2 (§2.4 [C])
 local ke_tol = slender.var("ke_tol", 1e-8 * 1000.0)
 local relax_max = slender.var("relax_steps", 2e6)

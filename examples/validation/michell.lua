@@ -14,10 +14,11 @@
 -- -Theta / L on untwisted frames, which loads the ring with the same uniform
 -- twisting moment GJ Theta / L as twisting its frames by Theta.
 --   slender michell.lua -v nodes=48 -v GJ=0.75
-local N = slender.var("nodes", 24)
+local fast = slender.var("fast", 0) == 1   -- the example suite: 12 nodes, 6 bisections
+local N = slender.var("nodes", fast and 12 or 24)
 local YI = slender.var("YI", 1.0)
 local GJ = slender.var("GJ", 1.0 / 1.33)   -- a circular section with nu = 0.33: GJ = YI / (1 + nu)
-local iterations = slender.var("iterations", 10)
+local iterations = slender.var("iterations", fast and 6 or 10)
 local R0 = 1.0
 local L = 2 * math.pi * R0
 local h = 2 * R0 * math.sin(math.pi / N)

@@ -13,13 +13,16 @@ local M = {}
 
 -- Builds the scene; returns the simulation and what the report needs.
 function M.build(p)
-  local f = slender.var("f", p.f)
+  -- -v fast=1 (the example suite and the tests): f = 10 up to phi = 0.3 (or the deck's
+  -- fast_max_phi) unless given
+  local fast = slender.var("fast", 0) == 1
+  local f = slender.var("f", fast and 10 or p.f)
   local s = slender.var("s", p.s)
   local yield = slender.var("yield", p.yield)
   local mu = slender.var("mu", p.mu)
   local hardening = slender.var("hardening", p.hardening or 0.05)
   local seed = slender.var("seed", 1)
-  local max_phi = slender.var("max_phi", p.max_phi or 1.0)
+  local max_phi = slender.var("max_phi", fast and (p.fast_max_phi or 0.3) or (p.max_phi or 1.0))
   local output = slender.var("output", true)
   local name = p.name
 

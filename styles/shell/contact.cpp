@@ -35,6 +35,11 @@ class ShellContactPair : public PairStyle {
     s.real("k", "contact stiffness k_ct (default Y h mean_edge)").positive();
     s.real("young", "Young's modulus for the default k").def(1e4).positive();
     s.real("skin", "extra reach of the pair list (default h)").positive();
+    s.real("near_distance",
+           "pairs whose smallest reference vertex distance is at most this are near "
+           "neighbours and touch only across a ridge (MODELS.md §6.10: h; a few h keeps the "
+           "tightly curved core of a thick e-cone from touching itself)")
+        .positive();
     s.integer("rebuild_every", "steps between pair-list rebuilds (also rebuilt on movement)")
         .def(20.0)
         .min(1);
@@ -67,6 +72,7 @@ class ShellContactPair : public PairStyle {
     mean_edge_ = sum / n;
     k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
     skin_ = p.has("skin") ? p.real("skin") : h_;
+    near_ = p.has("near_distance") ? p.real("near_distance") : h_;
     set_friction(p);
     face_flag_.assign(mesh_->n_real_tris, 0.0);
   }
@@ -89,6 +95,7 @@ class ShellContactPair : public PairStyle {
                          kv.first + "'");
     full["mesh"] = mesh_name_;
     full["thickness"] = h_;
+    full["near_distance"] = near_;
     if (!full.count("mu_static")) full["mu_static"] = friction_.mu_static;
     if (!full.count("stick_stiffness")) full["stick_stiffness"] = friction_.stick_stiffness;
     set_friction(spec(style_name()).validate(full));
@@ -352,7 +359,7 @@ class ShellContactPair : public PairStyle {
       for (int a : T[t1])
         for (int b : T[t2]) dref = std::min(dref, (X[a] - X[b]).norm());
       if (dref == 0) continue;  // neighbours never collide
-      Candidate cand{t1, t2, dref <= h_, FrictionState{}};
+      Candidate cand{t1, t2, dref <= near_, FrictionState{}};
       if (auto it = history.find(id); it != history.end()) cand.friction = it->second;
       pairs_.push_back(cand);
     }
@@ -364,7 +371,7 @@ class ShellContactPair : public PairStyle {
   ContactLaw friction_;
   std::shared_ptr<const shell::GhostedMesh> mesh_;
   int base_ = 0;
-  double mean_edge_ = 0, k_ = 0, skin_ = 0, m_min_ = 1;
+  double mean_edge_ = 0, k_ = 0, skin_ = 0, near_ = 0, m_min_ = 1;
   std::vector<Candidate> pairs_;
   std::vector<Vec3> built_x_, box_lo_, box_hi_;
   long since_build_ = 0, rebuilds_ = 0;

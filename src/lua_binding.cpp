@@ -861,14 +861,23 @@ const luaL_Reg kSimMethods[] = {SLENDER_METHOD("wire", l_wire),
                                 SLENDER_METHOD("read_checkpoint", l_read_checkpoint),
                                 {nullptr, nullptr}};
 
-const luaL_Reg kModule[] = {
-    SLENDER_METHOD("simulation", l_simulation), SLENDER_METHOD("var", l_var),
-    SLENDER_METHOD("clock", l_clock),           SLENDER_METHOD("result", l_result),
-    SLENDER_METHOD("styles", l_styles),         {nullptr, nullptr}};
+// slender.plugin(path): loads a style plugin; returns how many styles it registered.
+int l_plugin(lua_State* L) {
+  lua_pushinteger(L, load_plugin(luaL_checkstring(L, 1)));
+  return 1;
+}
+
+const luaL_Reg kModule[] = {SLENDER_METHOD("plugin", l_plugin),
+                            SLENDER_METHOD("simulation", l_simulation),
+                            SLENDER_METHOD("var", l_var),
+                            SLENDER_METHOD("clock", l_clock),
+                            SLENDER_METHOD("result", l_result),
+                            SLENDER_METHOD("styles", l_styles),
+                            {nullptr, nullptr}};
 
 int open_module(lua_State* L) {
   luaL_newlib(L, kModule);
-  lua_pushstring(L, "0.1.0");
+  lua_pushstring(L, SLENDER_VERSION_STRING);
   lua_setfield(L, -2, "version");
   return 1;
 }

@@ -80,6 +80,12 @@ int help_style(const std::string& name) {
 
 int main(int argc, char** argv) {
   slender::DeckOptions opt;
+  try {
+    slender::load_plugins_from_environment();  // SLENDER_PLUGIN_PATH
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "slender: error: SLENDER_PLUGIN_PATH: %s\n", e.what());
+    return 1;
+  }
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--list-styles") return list_styles();
@@ -90,7 +96,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (a == "--version") {
-      std::printf("slender 0.1.0\n");
+      std::printf("slender %s (ABI %s)\n", SLENDER_VERSION_STRING, SLENDER_ABI_STRING);
       return 0;
     }
     if (a == "-q") {

@@ -86,6 +86,7 @@ class Registry {
 
 #define SLENDER_CONCAT_INNER(a, b) a##b
 #define SLENDER_CONCAT(a, b) SLENDER_CONCAT_INNER(a, b)
+#ifndef SLENDER_PLUGIN
 #define SLENDER_REGISTER_STYLE(Base, NAME, Class)                                    \
   namespace {                                                                        \
   [[maybe_unused]] const bool SLENDER_CONCAT(slender_registered_, __LINE__) =        \
@@ -94,5 +95,43 @@ class Registry {
           [](::slender::Simulation& sim, const ::slender::ParamValues& p)            \
               -> std::unique_ptr<Base> { return std::make_unique<Class>(sim, p); }); \
   }
+#define SLENDER_PLUGIN_ENTRY()
+#else
+// In a plugin (compiled with -DSLENDER_PLUGIN, see slender_add_plugin) registration
+// waits until slender has loaded the library and checked that it was built for the
+// same slender: a mismatched plugin is refused before any of its code touches the
+// registry. SLENDER_PLUGIN_ENTRY() (once per plugin) defines the two entry points.
+inline std::vector<std::function<void()> >& plugin_pending() {
+  static std::vector<std::function<void()> > v;
+  return v;
+}
+#define SLENDER_REGISTER_STYLE(Base, NAME, Class)                                                  \
+  namespace {                                                                                      \
+  [[maybe_unused]] const bool SLENDER_CONCAT(                                                      \
+      slender_registered_, __LINE__) = (::slender::plugin_pending().push_back([] {                 \
+    ::slender::Registry<Base>::add(                                                                \
+        NAME, [] { return Class::spec(NAME); },                                                    \
+        [](::slender::Simulation& sim, const ::slender::ParamValues& p) -> std::unique_ptr<Base> { \
+          return std::make_unique<Class>(sim, p);                                                  \
+        });                                                                                        \
+  }),                                                                                              \
+                                        true);                                                     \
+  }
+#define SLENDER_PLUGIN_ENTRY()                                                         \
+  extern "C" __attribute__((visibility("default"))) const char* slender_plugin_abi() { \
+    return SLENDER_ABI_STRING;                                                         \
+  }                                                                                    \
+  extern "C" __attribute__((visibility("default"))) int slender_plugin_register() {    \
+    for (auto& f : ::slender::plugin_pending()) f();                                   \
+    return static_cast<int>(::slender::plugin_pending().size());                       \
+  }
+#endif
+
+// Loads a style plugin (a shared library built with slender_add_plugin): checks its
+// ABI string, then registers its styles; returns how many. Throws InputError with
+// the reason (file missing, not a plugin, built for another slender).
+int load_plugin(const std::string& path);
+// Loads every plugin named in SLENDER_PLUGIN_PATH (colon-separated files or folders).
+void load_plugins_from_environment();
 
 }  // namespace slender

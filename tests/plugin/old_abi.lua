@@ -1,0 +1,2 @@
+local slender = require("slender")
+slender.plugin(slender.var("plugin", "libold_abi.so"))

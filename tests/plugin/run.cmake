@@ -1,0 +1,47 @@
+# Builds the out-of-tree plugin (examples/plugin), a plugin with a foreign ABI and the
+# embedding program (examples/embed) against this build tree, and runs them.
+#   -DSLENDER=path/slender -DSLENDER_DIR=build -DROOT=source -DWORK=dir
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(rc "${rc}" PARENT_SCOPE)
+  set(out "${out}${err}" PARENT_SCOPE)
+endfunction()
+file(REMOVE_RECURSE "${WORK}")
+foreach(proj IN ITEMS examples/plugin examples/embed tests/plugin)
+  string(REPLACE "/" "_" b "${proj}")
+  run(${CMAKE_COMMAND} -S ${ROOT}/${proj} -B ${WORK}/${b} -Dslender_DIR=${SLENDER_DIR}
+      -DCMAKE_BUILD_TYPE=Release)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "configure ${proj} failed:\n${out}")
+  endif()
+  run(${CMAKE_COMMAND} --build ${WORK}/${b})
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "build ${proj} failed:\n${out}")
+  endif()
+endforeach()
+# the plugin loads, registers and works from a deck
+run(${SLENDER} ${ROOT}/examples/plugin/tether.lua -v plugin=${WORK}/examples_plugin/libtether.so)
+message("${out}")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "tether plugin: ok")
+  message(FATAL_ERROR "the tether plugin deck failed")
+endif()
+# ... and documents itself like a built-in style
+set(ENV{SLENDER_PLUGIN_PATH} ${WORK}/examples_plugin/libtether.so)
+run(${SLENDER} --help tether)
+unset(ENV{SLENDER_PLUGIN_PATH})
+if(NOT out MATCHES "harmonic tether")
+  message(FATAL_ERROR "slender --help tether:\n${out}")
+endif()
+# a plugin built for another slender is refused with the reason, naming the deck line
+run(${SLENDER} ${ROOT}/tests/plugin/old_abi.lua -v plugin=${WORK}/tests_plugin/libold_abi.so)
+message("${out}")
+if(rc EQUAL 0 OR NOT out MATCHES "old_abi.lua:2: .*was built for slender 0.0.1")
+  message(FATAL_ERROR "the foreign plugin was not refused properly")
+endif()
+# the embedding program
+run(${WORK}/examples_embed/embed)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the embedding example failed")
+endif()
+message("plugin and embedding: ok")

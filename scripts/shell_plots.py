@@ -77,7 +77,8 @@ def econe(args):
     ok = d["gamma"] >= 0
     axes[2].plot(phi[ok], np.degrees(d["gamma"][ok]), "o-")
     axes[2].set_ylabel(r"contact-plane angle $\gamma$ (deg)")
-    touch = np.nonzero(d["contacts"] > 0)[0]
+    # first contact of the wings (far_contacts), or of anything in older files
+    touch = np.nonzero(d.get("far_contacts", d["contacts"]) > 0)[0]
     for ax in axes:
         ax.set_xlabel(r"excess angle $\phi_e$")
         if len(touch):

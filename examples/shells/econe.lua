@@ -42,10 +42,12 @@ end
 sim:growth("g", "econe", {phi_e = 0})
 sim:shell("koiter", {mesh = "disc", thickness = h, young = young, poisson = poisson, growth = "g",
                      boundary = slender.var("boundary", "mirror")})
--- near neighbours (touching only across a ridge) within 4 h in the reference: the core of
--- the cone is curved on the scale of h and would otherwise touch itself before the wings do
+-- near neighbours (touching only across a ridge) within 4 h in the reference; the kissing
+-- angle counts only contacts between triangles more than R/4 apart in the reference (the
+-- wings): the sharp apex of a thick cone touches itself across the tip long before
 sim:pair("contact/shell", {mesh = "disc", thickness = h, young = young,
-                           near_distance = slender.var("near_distance", 4 * h)})
+                           near_distance = slender.var("near_distance", 4 * h),
+                           far_distance = slender.var("far_distance", 0.25)})
 sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + inner)})
 sim:integrator("fire", {})
 sim:dump("surface", "shell", {file = out .. "/surface.h5", every = 1000000000, mesh = "disc",
@@ -53,7 +55,7 @@ sim:dump("surface", "shell", {file = out .. "/surface.h5", every = 1000000000, m
 print(string.format("e-cone: h = %g, %d nodes, %d triangles, ftol = %.3g", h, nodes, tris, ftol))
 
 local csv = io.open(out .. "/econe.csv", "w")
-csv:write("phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,gamma,steps,wall_s\n")
+csv:write("phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,steps,wall_s\n")
 local t0 = slender.clock()
 local function relax(phi)
   sim:modify("g", {phi_e = phi})
@@ -63,7 +65,8 @@ end
 local function record(phi, steps)
   local row = {phi, sim:value("koiter.stretch"), sim:value("koiter.bend"), sim:value("koiter.Eb_hat"),
                sim:value("koiter.area"), sim:value("rim.n"), sim:value("rim.a2"), sim:value("rim.a3"),
-               sim:value("contact/shell.contacts"), sim:value("contact/shell.gamma"), steps,
+               sim:value("contact/shell.contacts"), sim:value("contact/shell.far_contacts"),
+               sim:value("contact/shell.gamma"), steps,
                slender.clock() - t0}
   for i, v in ipairs(row) do row[i] = string.format("%.8g", v) end
   csv:write(table.concat(row, ",") .. "\n")
@@ -83,15 +86,15 @@ while phi < phi_max - 1e-12 do
   sim:write_checkpoint(ckpt)
   phi = math.min(phi_max, phi + dphi)
   local steps = relax(phi)
-  if not kiss and sim:value("contact/shell.contacts") == 0 then wings_before = sim:value("rim.n") end
-  if not kiss and sim:value("contact/shell.contacts") > 0 then
+  if not kiss and sim:value("contact/shell.far_contacts") == 0 then wings_before = sim:value("rim.n") end
+  if not kiss and sim:value("contact/shell.far_contacts") > 0 then
     -- first contact in (prev_phi, phi]: bisect from the last contact-free state
     local lo, hi = prev_phi, phi
     for _ = 1, kiss_bisections do
       local mid = 0.5 * (lo + hi)
       sim:read_checkpoint(ckpt)
       relax(mid)
-      if sim:value("contact/shell.contacts") > 0 then
+      if sim:value("contact/shell.far_contacts") > 0 then
         hi = mid
       else
         lo = mid

@@ -40,6 +40,11 @@ class ShellContactPair : public PairStyle {
            "neighbours and touch only across a ridge (MODELS.md §6.10: h; a few h keeps the "
            "tightly curved core of a thick e-cone from touching itself)")
         .positive();
+    s.real("far_distance",
+           "contacts between triangles farther apart than this in the reference are also "
+           "counted as far_contacts (e.g. the wings of an e-cone, not its apex)")
+        .def(0.0)
+        .nonnegative();
     s.integer("rebuild_every", "steps between pair-list rebuilds (also rebuilt on movement)")
         .def(20.0)
         .min(1);
@@ -73,6 +78,7 @@ class ShellContactPair : public PairStyle {
     k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
     skin_ = p.has("skin") ? p.real("skin") : h_;
     near_ = p.has("near_distance") ? p.real("near_distance") : h_;
+    far_ = p.real("far_distance");
     set_friction(p);
     face_flag_.assign(mesh_->n_real_tris, 0.0);
   }
@@ -96,6 +102,7 @@ class ShellContactPair : public PairStyle {
     full["mesh"] = mesh_name_;
     full["thickness"] = h_;
     full["near_distance"] = near_;
+    full["far_distance"] = far_;
     if (!full.count("mu_static")) full["mu_static"] = friction_.mu_static;
     if (!full.count("stick_stiffness")) full["stick_stiffness"] = friction_.stick_stiffness;
     set_friction(spec(style_name()).validate(full));
@@ -124,6 +131,7 @@ class ShellContactPair : public PairStyle {
     const auto& T = mesh_->mesh.tri;
     double energy = 0;
     contacts_ = 0;
+    far_contacts_ = 0;
     force_sum_ = 0;
     std::fill(face_flag_.begin(), face_flag_.end(), 0.0);
     points_.clear();
@@ -180,6 +188,7 @@ class ShellContactPair : public PairStyle {
         f[base_ + T[c.t2][k]] -= tp.w2[k] * fv;
       }
       ++contacts_;
+      if (c.dref > far_) ++far_contacts_;
       force_sum_ += mag;
       face_flag_[c.t1] = face_flag_[c.t2] = 1.0;
       Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
@@ -194,10 +203,11 @@ class ShellContactPair : public PairStyle {
   }
 
   std::vector<std::string> value_keys() const override {
-    return {"contacts", "force", "gamma", "pairs", "rebuilds"};
+    return {"contacts", "far_contacts", "force", "gamma", "pairs", "rebuilds"};
   }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
+    if (key == "far_contacts") return far_contacts_;
     if (key == "force") return force_sum_;
     if (key == "gamma") return contact_plane_angle();
     if (key == "pairs") return static_cast<double>(pairs_.size());
@@ -261,6 +271,7 @@ class ShellContactPair : public PairStyle {
   struct Candidate {
     int t1, t2;
     bool near;
+    double dref;             // smallest reference distance of their vertices
     FrictionState friction;  // history of the stick spring (frictional contacts)
   };
 
@@ -359,7 +370,7 @@ class ShellContactPair : public PairStyle {
       for (int a : T[t1])
         for (int b : T[t2]) dref = std::min(dref, (X[a] - X[b]).norm());
       if (dref == 0) continue;  // neighbours never collide
-      Candidate cand{t1, t2, dref <= near_, FrictionState{}};
+      Candidate cand{t1, t2, dref <= near_, dref, FrictionState{}};
       if (auto it = history.find(id); it != history.end()) cand.friction = it->second;
       pairs_.push_back(cand);
     }
@@ -371,11 +382,11 @@ class ShellContactPair : public PairStyle {
   ContactLaw friction_;
   std::shared_ptr<const shell::GhostedMesh> mesh_;
   int base_ = 0;
-  double mean_edge_ = 0, k_ = 0, skin_ = 0, near_ = 0, m_min_ = 1;
+  double mean_edge_ = 0, k_ = 0, skin_ = 0, near_ = 0, far_ = 0, m_min_ = 1;
   std::vector<Candidate> pairs_;
   std::vector<Vec3> built_x_, box_lo_, box_hi_;
   long since_build_ = 0, rebuilds_ = 0;
-  int contacts_ = 0;
+  int contacts_ = 0, far_contacts_ = 0;
   double force_sum_ = 0;
   std::vector<double> face_flag_;
   std::vector<Vec3> points_, forces_;

@@ -1,4 +1,5 @@
 #include "h5util.hpp"
+#include <cstdio>
 
 #include <stdexcept>
 
@@ -184,6 +185,18 @@ long TimeSeries::append(long step, double time, const double* data, size_t n) {
     check(H5Dwrite(value_, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, data), "write value");
   }
   return frames_++;
+}
+
+std::string xdmf_slab(const std::string& file, const std::string& path, long t, size_t n, int nc,
+                      size_t cap, long frames, const char* type) {
+  char head[512];
+  std::snprintf(
+      head, sizeof head,
+      "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu %d\" Type=\"HyperSlab\">\n"
+      "  <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %zu %d</DataItem>\n"
+      "  <DataItem Dimensions=\"%ld %zu %d\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">",
+      n, nc, t, n, nc, frames, cap, nc, type);
+  return std::string(head) + file + ":" + path + "</DataItem>\n</DataItem>\n";
 }
 
 }  // namespace slender::h5

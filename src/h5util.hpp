@@ -76,5 +76,10 @@ class TimeSeries {
   hsize_t nmax_ = 0;
 };
 
+// XDMF DataItem selecting frame t (n rows of nc values) of an extendable
+// <frames> x <cap> x nc HDF5 dataset `path` in file `file` (for ParaView).
+std::string xdmf_slab(const std::string& file, const std::string& path, long t, size_t n, int nc,
+                      size_t cap, long frames, const char* type);
+
 }  // namespace slender::h5
 #endif

@@ -114,14 +114,7 @@ class H5mdDump : public DumpStyle {
   }
   std::string slab(const std::string& path, long t, size_t n, int nc, size_t cap, long frames,
                    const char* type) const {
-    char head[512];
-    std::snprintf(
-        head, sizeof head,
-        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu %d\" Type=\"HyperSlab\">\n"
-        "  <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %zu %d</DataItem>\n"
-        "  <DataItem Dimensions=\"%ld %zu %d\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">",
-        n, nc, t, n, nc, frames, cap, nc, type);
-    return std::string(head) + base_name() + ":" + path + "</DataItem>\n</DataItem>\n";
+    return h5::xdmf_slab(base_name(), path, t, n, nc, cap, frames, type);
   }
   std::string base_name() const {
     auto pos = file_.find_last_of('/');

@@ -89,15 +89,7 @@ class ShellDump : public DumpStyle {
     return pos == std::string::npos ? file_ : file_.substr(pos + 1);
   }
   std::string slab(const std::string& path, long t, std::size_t n, int nc, long T) const {
-    char head[512];
-    std::snprintf(
-        head, sizeof head,
-        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu %d\" Type=\"HyperSlab\">\n"
-        "  <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %zu %d</DataItem>\n"
-        "  <DataItem Dimensions=\"%ld %zu %d\" NumberType=\"Float\" Precision=\"8\" "
-        "Format=\"HDF\">",
-        n, nc, t, n, nc, T, n, nc);
-    return std::string(head) + base_name() + ":" + path + "</DataItem>\n</DataItem>\n";
+    return h5::xdmf_slab(base_name(), path, t, n, nc, n, T, "Float");
   }
   void write_xdmf() {
     const std::string path = file_ + ".xdmf", tmp = path + ".tmp";

@@ -44,10 +44,13 @@ sim:shell("koiter", {mesh = "disc", thickness = h, young = young, poisson = pois
                      boundary = slender.var("boundary", "mirror")})
 -- near neighbours (touching only across a ridge) within 4 h in the reference; the kissing
 -- angle counts only contacts between triangles more than R/4 apart in the reference (the
--- wings): the sharp apex of a thick cone touches itself across the tip long before
+-- wings): the sharp apex of a thick cone touches itself across the tip long before.
+-- dense = "all" sums the forces of every feature pair within h: relaxations after contact
+-- converge (with the closest pair only, FIRE stalls where the closest feature switches)
 sim:pair("contact/shell", {mesh = "disc", thickness = h, young = young,
                            near_distance = slender.var("near_distance", 4 * h),
-                           far_distance = slender.var("far_distance", 0.25)})
+                           far_distance = slender.var("far_distance", 0.25),
+                           dense = slender.var("dense", "all")})
 sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + inner)})
 sim:integrator("fire", {})
 sim:dump("surface", "shell", {file = out .. "/surface.h5", every = 1000000000, mesh = "disc",

@@ -27,7 +27,7 @@ if mode == "grow" then
   shell.growth = "g"
 end
 sim:shell("koiter", shell)
-sim:pair("contact/shell", {mesh = "disc", thickness = h, young = young})
+sim:pair("contact/shell", {mesh = "disc", thickness = h, young = young, dense = "all"})
 -- container (MODELS.md §6.10): f = k_ct (|x| + h/2 - R_s)^2 / (h/2)^2, k_ct = Y h edge, frictionless
 local k_ct = young * h * edge
 sim:fix("sphere", "wall/sphere", {radius = 1.0, diameter = h, stiffness = k_ct / (h / 2) ^ 2,

@@ -50,31 +50,41 @@ struct TrianglePair {
   std::array<double, 3> w1{}, w2{};  // barycentric weights on T1 and T2
 };
 
-inline TrianglePair triangle_distance(const std::array<Vec3, 3>& A, const std::array<Vec3, 3>& B) {
-  TrianglePair best;
+// Calls f(TrianglePair) for each of the 6 vertex-triangle and 9 edge-edge closest-point
+// problems of two triangles. Masks select features (vertex k / edge k->k+1 of each
+// triangle) so that a caller summing over many triangle pairs counts each once.
+struct FeatureMask {
+  std::array<bool, 3> vertex{true, true, true}, edge{true, true, true};
+};
+template <class F>
+void for_each_feature_pair(const std::array<Vec3, 3>& A, const std::array<Vec3, 3>& B, F&& f,
+                           const FeatureMask& ma = {}, const FeatureMask& mb = {}) {
   auto take = [&](const Vec3& p1, const Vec3& p2, const std::array<double, 3>& w1,
                   const std::array<double, 3>& w2) {
-    const Vec3 d = p1 - p2;
-    const double r = d.norm();
-    if (r < best.dist) {
-      best.dist = r;
-      best.d = d;
-      best.w1 = w1;
-      best.w2 = w2;
-    }
+    TrianglePair tp;
+    tp.d = p1 - p2;
+    tp.dist = tp.d.norm();
+    tp.w1 = w1;
+    tp.w2 = w2;
+    f(tp);
   };
   for (int k = 0; k < 3; ++k) {
-    auto wb = closest_on_triangle(A[k], B[0], B[1], B[2]);
-    std::array<double, 3> wa{};
-    wa[k] = 1;
-    take(A[k], wb[0] * B[0] + wb[1] * B[1] + wb[2] * B[2], wa, wb);
-    auto wa2 = closest_on_triangle(B[k], A[0], A[1], A[2]);
-    std::array<double, 3> wbk{};
-    wbk[k] = 1;
-    take(wa2[0] * A[0] + wa2[1] * A[1] + wa2[2] * A[2], B[k], wa2, wbk);
+    if (ma.vertex[k]) {
+      auto wb = closest_on_triangle(A[k], B[0], B[1], B[2]);
+      std::array<double, 3> wa{};
+      wa[k] = 1;
+      take(A[k], wb[0] * B[0] + wb[1] * B[1] + wb[2] * B[2], wa, wb);
+    }
+    if (mb.vertex[k]) {
+      auto wa2 = closest_on_triangle(B[k], A[0], A[1], A[2]);
+      std::array<double, 3> wbk{};
+      wbk[k] = 1;
+      take(wa2[0] * A[0] + wa2[1] * A[1] + wa2[2] * A[2], B[k], wa2, wbk);
+    }
   }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
+      if (!ma.edge[i] || !mb.edge[j]) continue;
       const int i2 = (i + 1) % 3, j2 = (j + 1) % 3;
       double s = 0, t = 0;
       closest_points(A[i], A[i2], B[j], B[j2], s, t);
@@ -85,6 +95,13 @@ inline TrianglePair triangle_distance(const std::array<Vec3, 3>& A, const std::a
       wb[j2] = t;
       take(A[i] + s * (A[i2] - A[i]), B[j] + t * (B[j2] - B[j]), wa, wb);
     }
+}
+
+inline TrianglePair triangle_distance(const std::array<Vec3, 3>& A, const std::array<Vec3, 3>& B) {
+  TrianglePair best;
+  for_each_feature_pair(A, B, [&](const TrianglePair& tp) {
+    if (tp.dist < best.dist) best = tp;
+  });
   return best;
 }
 

@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <unordered_map>
 
 #include "contact_law.hpp"
@@ -40,6 +41,12 @@ class ShellContactPair : public PairStyle {
            "neighbours and touch only across a ridge (MODELS.md §6.10: h; a few h keeps the "
            "tightly curved core of a thick e-cone from touching itself)")
         .positive();
+    s.string("dense",
+             "closest: one force per triangle pair along its closest points (MODELS.md §6.10); "
+             "all: one per vertex-triangle and edge-edge feature pair within h, a smoother sum "
+             "that lets relaxations converge when faceted contacts slide (frictionless only)")
+        .def(std::string("closest"))
+        .choices({"closest", "all"});
     s.real("far_distance",
            "contacts between triangles farther apart than this in the reference are also "
            "counted as far_contacts (e.g. the wings of an e-cone, not its apex)")
@@ -79,8 +86,29 @@ class ShellContactPair : public PairStyle {
     skin_ = p.has("skin") ? p.real("skin") : h_;
     near_ = p.has("near_distance") ? p.real("near_distance") : h_;
     far_ = p.real("far_distance");
+    dense_all_ = p.str("dense") == "all";
     set_friction(p);
+    if (dense_all_ && friction_.frictional())
+      throw InputError("pair 'contact/shell': friction needs dense = \"closest\"");
     face_flag_.assign(mesh_->n_real_tris, 0.0);
+    // dense = all: each vertex and each edge is owned by one of its triangles, so that
+    // a vertex-triangle or edge-edge term is summed once, not once per triangle pair
+    const auto& tri = mesh_->mesh.tri;
+    std::vector<int> vertex_owner(mesh_->mesh.n_nodes(), -1);
+    std::map<std::pair<int, int>, int> edge_owner;
+    for (int t = 0; t < mesh_->n_real_tris; ++t)
+      for (int k = 0; k < 3; ++k) {
+        if (vertex_owner[tri[t][k]] < 0) vertex_owner[tri[t][k]] = t;
+        const int a = tri[t][k], b = tri[t][(k + 1) % 3];
+        edge_owner.try_emplace({std::min(a, b), std::max(a, b)}, t);
+      }
+    masks_.resize(mesh_->n_real_tris);
+    for (int t = 0; t < mesh_->n_real_tris; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = tri[t][k], b = tri[t][(k + 1) % 3];
+        masks_[t].vertex[k] = vertex_owner[a] == t;
+        masks_[t].edge[k] = edge_owner.at({std::min(a, b), std::max(a, b)}) == t;
+      }
   }
 
   void set_friction(const ParamValues& p) {
@@ -103,6 +131,7 @@ class ShellContactPair : public PairStyle {
     full["thickness"] = h_;
     full["near_distance"] = near_;
     full["far_distance"] = far_;
+    full["dense"] = std::string(dense_all_ ? "all" : "closest");
     if (!full.count("mu_static")) full["mu_static"] = friction_.mu_static;
     if (!full.count("stick_stiffness")) full["stick_stiffness"] = friction_.stick_stiffness;
     set_friction(spec(style_name()).validate(full));
@@ -119,7 +148,9 @@ class ShellContactPair : public PairStyle {
   // stiffness at an overlap of 20% of h, the scale of resolved contacts
   double max_frequency(const Simulation&) const override {
     const double r = 0.8 * h_;
-    const double kr = k_ * (2 * (h_ - r) / (r * r) + 2 * (h_ - r) * (h_ - r) / (r * r * r));
+    double kr = k_ * (2 * (h_ - r) / (r * r) + 2 * (h_ - r) * (h_ - r) / (r * r * r));
+    // dense = all: a node above a vertex of the other sheet meets up to six triangles
+    if (dense_all_) kr *= 6;
     return std::sqrt(kr / m_min_);
   }
 
@@ -160,44 +191,62 @@ class ShellContactPair : public PairStyle {
       const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
       if (c.near && n1.dot(n2) > 0) continue;  // near neighbours touch only across a ridge
       if (separated(A, B, n1, n2)) continue;
-      const shell::TrianglePair tp = shell::triangle_distance(A, B);
-      if (tp.dist >= h_) {
+      auto apply = [&](const shell::TrianglePair& tp) {
+        Vec3 dir = tp.d;
+        if (tp.dist > 0) {
+          dir /= tp.dist;
+        } else {  // touching: push along the normal of T1
+          dir = n1.normalized();
+        }
+        const double r = std::max(tp.dist, rc);
+        const double mag = k_ * (h_ - r) * (h_ - r) / (r * r);
+        double U = k_ * (h_ * h_ / r - r + 2 * h_ * std::log(r / h_));
+        if (tp.dist < rc) U += mag * (rc - tp.dist);
+        energy += U;
+        Vec3 fv = mag * dir;
+        if (friction_.frictional()) {
+          Vec3 vrel = Vec3::Zero();
+          for (int k = 0; k < 3; ++k)
+            vrel += tp.w1[k] * v[base_ + T[c.t1][k]] - tp.w2[k] * v[base_ + T[c.t2][k]];
+          fv += friction_.friction(mag, dir, vrel, sim.dt, c.friction);
+        }
+        for (int k = 0; k < 3; ++k) {
+          f[base_ + T[c.t1][k]] += tp.w1[k] * fv;
+          f[base_ + T[c.t2][k]] -= tp.w2[k] * fv;
+        }
+        force_sum_ += mag;
+        Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
+        for (int k = 0; k < 3; ++k) {
+          p1 += tp.w1[k] * A[k];
+          p2 += tp.w2[k] * B[k];
+        }
+        points_.push_back(0.5 * (p1 + p2));
+        forces_.push_back(fv);
+      };
+      bool touching = false;
+      if (dense_all_) {
+        shell::for_each_feature_pair(
+            A, B,
+            [&](const shell::TrianglePair& tp) {
+              if (tp.dist >= h_) return;
+              apply(tp);
+              touching = true;
+            },
+            masks_[c.t1], masks_[c.t2]);
+      } else {
+        const shell::TrianglePair tp = shell::triangle_distance(A, B);
+        if (tp.dist < h_) {
+          apply(tp);
+          touching = true;
+        }
+      }
+      if (!touching) {
         c.friction.active = false;
         continue;
       }
-      Vec3 dir = tp.d;
-      if (tp.dist > 0) {
-        dir /= tp.dist;
-      } else {  // touching: push along the normal of T1
-        dir = (A[1] - A[0]).cross(A[2] - A[0]).normalized();
-      }
-      const double r = std::max(tp.dist, rc);
-      const double mag = k_ * (h_ - r) * (h_ - r) / (r * r);
-      double U = k_ * (h_ * h_ / r - r + 2 * h_ * std::log(r / h_));
-      if (tp.dist < rc) U += mag * (rc - tp.dist);
-      energy += U;
-      Vec3 fv = mag * dir;
-      if (friction_.frictional()) {
-        Vec3 vrel = Vec3::Zero();
-        for (int k = 0; k < 3; ++k)
-          vrel += tp.w1[k] * v[base_ + T[c.t1][k]] - tp.w2[k] * v[base_ + T[c.t2][k]];
-        fv += friction_.friction(mag, dir, vrel, sim.dt, c.friction);
-      }
-      for (int k = 0; k < 3; ++k) {
-        f[base_ + T[c.t1][k]] += tp.w1[k] * fv;
-        f[base_ + T[c.t2][k]] -= tp.w2[k] * fv;
-      }
       ++contacts_;
       if (c.dref > far_) ++far_contacts_;
-      force_sum_ += mag;
       face_flag_[c.t1] = face_flag_[c.t2] = 1.0;
-      Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
-      for (int k = 0; k < 3; ++k) {
-        p1 += tp.w1[k] * A[k];
-        p2 += tp.w2[k] * B[k];
-      }
-      points_.push_back(0.5 * (p1 + p2));
-      forces_.push_back(fv);
     }
     return energy;
   }
@@ -383,6 +432,8 @@ class ShellContactPair : public PairStyle {
   std::shared_ptr<const shell::GhostedMesh> mesh_;
   int base_ = 0;
   double mean_edge_ = 0, k_ = 0, skin_ = 0, near_ = 0, far_ = 0, m_min_ = 1;
+  bool dense_all_ = false;
+  std::vector<shell::FeatureMask> masks_;
   std::vector<Candidate> pairs_;
   std::vector<Vec3> built_x_, box_lo_, box_hi_;
   long since_build_ = 0, rebuilds_ = 0;

@@ -65,21 +65,25 @@ TEST(ShellContact, TriangleDistance) {
 }
 
 TEST(ShellContact, ForcesAreTheGradientOfTheContactEnergy) {
-  auto sim = std::make_unique<Simulation>(3, 1);
-  sim->verbose = false;
-  // far apart in the reference, brought within h now
-  shell::add_surface(*sim, "s", two_plates(1.0, 2), 0.0);
-  sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", 0.02}, {"k", 3.0}}));
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<double> u(-0.003, 0.003);
-  for (auto& x : sim->nodes().x) {
-    if (x.z() > 0.5) x.z() -= 1.0 - 0.012;
-    x += Vec3(u(rng), u(rng), u(rng));
+  for (std::string dense : {"closest", "all"}) {
+    auto sim = std::make_unique<Simulation>(3, 1);
+    sim->verbose = false;
+    // far apart in the reference, brought within h now
+    shell::add_surface(*sim, "s", two_plates(1.0, 2), 0.0);
+    sim->add_pair(
+        "contact/shell",
+        P({{"mesh", std::string("s")}, {"thickness", 0.02}, {"k", 3.0}, {"dense", dense}}));
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(-0.003, 0.003);
+    for (auto& x : sim->nodes().x) {
+      if (x.z() > 0.5) x.z() -= 1.0 - 0.012;
+      x += Vec3(u(rng), u(rng), u(rng));
+    }
+    sim->compute_forces();
+    EXPECT_GT(sim->find_style("contact/shell")->value("contacts"), 0);
+    EXPECT_GT(sim->potential_energy(), 0);
+    EXPECT_LT(fd_force_error(*sim, 1e-8), 1e-5) << dense;
   }
-  sim->compute_forces();
-  EXPECT_GT(sim->find_style("contact/shell")->value("contacts"), 0);
-  EXPECT_GT(sim->potential_energy(), 0);
-  EXPECT_LT(fd_force_error(*sim, 1e-8), 1e-5);
 }
 
 TEST(ShellContact, FlatShellIsNotRepelledByItsNeighbours) {
@@ -127,7 +131,8 @@ TEST(ShellContact, FoldedShellIsRepelled) {
 }
 
 TEST(ShellContact, PressedShellsNeverInterpenetrate) {
-  for (double speed : {0.5, 5.0, 20.0}) {
+  for (auto [speed, dense] :
+       {std::pair{0.5, "closest"}, {5.0, "closest"}, {20.0, "closest"}, {20.0, "all"}}) {
     auto sim = std::make_unique<Simulation>(3, 1);
     sim->verbose = false;
     const double h = 0.02;
@@ -135,7 +140,8 @@ TEST(ShellContact, PressedShellsNeverInterpenetrate) {
     sim->add_shell(
         "koiter",
         P({{"mesh", std::string("s")}, {"thickness", h}, {"boundary", std::string("mirror")}}));
-    sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", h}}));
+    sim->add_pair("contact/shell",
+                  P({{"mesh", std::string("s")}, {"thickness", h}, {"dense", dense}}));
     std::vector<int> top, bottom;
     for (int i : sim->group("s")) (sim->nodes().x[i].z() > 0.025 ? top : bottom).push_back(i);
     for (int i : top) sim->nodes().v[i] = Vec3(0, 0, -speed);

@@ -907,6 +907,13 @@ void open_slender(lua_State* L, const DeckOptions& opt) {
   lua_pop(L, 1);
 }
 
+std::vector<std::string> deck_calls() {
+  std::vector<std::string> out;
+  for (const luaL_Reg* r = kModule; r->name; ++r) out.push_back(std::string("slender.") + r->name);
+  for (const luaL_Reg* r = kSimMethods; r->name; ++r) out.push_back(std::string("sim:") + r->name);
+  return out;
+}
+
 int run_deck(const DeckOptions& opt) {
   lua_State* L = luaL_newstate();
   luaL_openlibs(L);

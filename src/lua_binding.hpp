@@ -4,6 +4,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 struct lua_State;
 
@@ -21,5 +22,7 @@ void open_slender(lua_State* L, const DeckOptions& opt);
 // Runs a deck; prints one error line on failure. Exit codes: 0 ok, 1 deck or
 // input error, 3 instability.
 int run_deck(const DeckOptions& opt);
+// Every deck call ("slender.simulation", "sim:run", ...), for the docs/decks.md check.
+std::vector<std::string> deck_calls();
 
 }  // namespace slender

@@ -127,6 +127,10 @@ int main(int argc, char** argv) {
     std::string a = argv[i];
     if (a == "--list-styles") return list_styles();
     if (a == "--markdown-styles") return markdown_styles();
+    if (a == "--deck-calls") {
+      for (auto& c : slender::deck_calls()) std::printf("%s\n", c.c_str());
+      return 0;
+    }
     if (a == "--style-pages") {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "slender: --style-pages needs a folder\n");

@@ -263,6 +263,31 @@ class ShellContactPair : public PairStyle {
     if (key == "rebuilds") return static_cast<double>(rebuilds_);
     return PairStyle::value(key);
   }
+  // Friction history, so that a restarted run sticks where it stuck.
+  void save_state(StateMap& st) const override {
+    std::vector<double> fr;
+    for (auto& c : pairs_)
+      if (c.friction.active)
+        fr.insert(fr.end(), {double(c.t1), double(c.t2), c.friction.xi.x(), c.friction.xi.y(),
+                             c.friction.xi.z(), c.friction.stick ? 1.0 : 0.0});
+    if (!fr.empty()) st["friction"] = fr;
+  }
+  void load_state(const StateMap& st) override {
+    restored_.clear();
+    if (auto it = st.find("friction"); it != st.end())
+      for (std::size_t k = 0; k + 5 < it->second.size(); k += 6) {
+        const auto& v = it->second;
+        FrictionState fs;
+        fs.xi = Vec3(v[k + 2], v[k + 3], v[k + 4]);
+        fs.stick = v[k + 5] != 0;
+        fs.active = true;
+        restored_[(static_cast<std::uint64_t>(v[k]) << 32) | static_cast<std::uint32_t>(v[k + 1])] =
+            fs;
+      }
+    built_x_.clear();  // rebuild the list (with this history) at the next evaluation
+    pairs_.clear();
+  }
+
   const std::vector<double>* face_values(const std::string& key) const override {
     return key == "contact" ? &face_flag_ : nullptr;
   }
@@ -393,7 +418,7 @@ class ShellContactPair : public PairStyle {
           for (long k = cell(lo[t].z()); k <= cell(hi[t].z()); ++k)
             voxels[key(i, j, k)].push_back(t);
     // each overlapping pair is taken in one voxel only: the one holding the lower
-    // corner of the intersection of the two boxes (no duplicates, no sort)
+    // corner of the intersection of the two boxes (no duplicates)
     std::vector<std::uint64_t> found;
     for (auto& [vk, list] : voxels)
       for (std::size_t a = 0; a < list.size(); ++a)
@@ -405,8 +430,12 @@ class ShellContactPair : public PairStyle {
           if (key(cell(corner.x()), cell(corner.y()), cell(corner.z())) != vk) continue;
           found.push_back((static_cast<std::uint64_t>(t1) << 32) | static_cast<std::uint32_t>(t2));
         }
+    // a fixed order, so that forces sum the same way whenever the list was built (restarts
+    // are bit-identical)
+    std::sort(found.begin(), found.end());
     // friction history survives the rebuild for pairs that stay in the list
-    std::unordered_map<std::uint64_t, FrictionState> history;
+    std::unordered_map<std::uint64_t, FrictionState> history = std::move(restored_);
+    restored_.clear();
     if (friction_.frictional())
       for (auto& c : pairs_)
         if (c.friction.active)
@@ -434,6 +463,7 @@ class ShellContactPair : public PairStyle {
   double mean_edge_ = 0, k_ = 0, skin_ = 0, near_ = 0, far_ = 0, m_min_ = 1;
   bool dense_all_ = false;
   std::vector<shell::FeatureMask> masks_;
+  std::unordered_map<std::uint64_t, FrictionState> restored_;  // from a checkpoint
   std::vector<Candidate> pairs_;
   std::vector<Vec3> built_x_, box_lo_, box_hi_;
   long since_build_ = 0, rebuilds_ = 0;

@@ -208,4 +208,37 @@ TEST(ShellContact, StaticFrictionHoldsBelowMuTimesTheLoad) {
   EXPECT_GT(slip, 1.0);
 }
 
+#ifdef SLENDER_HAVE_HDF5
+// The friction history goes into checkpoints: a restarted frictional contact continues
+// bit-identically.
+TEST(ShellContact, FrictionHistoryRestartsBitIdentically) {
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  const double h = 0.02;
+  shell::add_surface(*sim, "s", two_plates(1.0, 3), 0.0);
+  std::vector<int> top, bottom;
+  for (int i : sim->group("s")) (sim->nodes().x[i].z() > 0.5 ? top : bottom).push_back(i);
+  for (int i : top) sim->nodes().x[i].z() = 0.8 * h;
+  sim->add_shell(
+      "koiter",
+      P({{"mesh", std::string("s")}, {"thickness", h}, {"boundary", std::string("mirror")}}));
+  sim->add_pair("contact/shell",
+                P({{"mesh", std::string("s")}, {"thickness", h}, {"mu_static", 0.5}}));
+  sim->set_group("top", top);
+  sim->set_group("bottom", bottom);
+  sim->add_fix("hold", "clamp", P({{"group", std::string("bottom")}}));
+  sim->add_fix("push", "force/constant",
+               P({{"group", std::string("top")}, {"force", std::vector<double>{0.1, 0, -0.5}}}));
+  sim->set_integrator("verlet", P({{"dt", 1e-4}}));
+  sim->run(RunOptions{500, 0, nullptr});
+  sim->write_checkpoint("shell_friction_restart.h5");
+  sim->run(RunOptions{300, 0, nullptr});
+  const std::vector<Vec3> first = sim->nodes().x;
+  sim->read_checkpoint("shell_friction_restart.h5");
+  sim->run(RunOptions{300, 0, nullptr});
+  for (std::size_t i = 0; i < first.size(); ++i) EXPECT_EQ(first[i], sim->nodes().x[i]) << i;
+  std::remove("shell_friction_restart.h5");
+}
+#endif
+
 #endif

@@ -76,7 +76,7 @@ class NewmarkIntegrator : public IntegratorStyle {
     lmin_ = shortest_edge(sim);
     if (epoch_ != sim.state_epoch || !initialised_) {
       // start (or restart after outside changes) from the current forces
-      for (size_t i = 0; i < sim.nodes().n_owned(); ++i) (*a_)[i] = accel(sim, i, Vec3::Zero());
+      for (size_t i = 0; i < sim.nodes().n_owned(); ++i) (*a_)[i] = accel(sim, i);
       epoch_ = sim.state_epoch;
       initialised_ = true;
     }
@@ -152,7 +152,8 @@ class NewmarkIntegrator : public IntegratorStyle {
   }
 
  private:
-  Vec3 accel(Simulation& sim, size_t i, const Vec3&) const {
+  // a = (f/m - c v) / (1 + gamma dt c): the start-up acceleration of the scheme
+  Vec3 accel(Simulation& sim, size_t i) const {
     auto& n = sim.nodes();
     return (n.f[i] / n.mass[i] - c_ * n.v[i]) / (1 + gamma_ * sim.dt * c_);
   }

@@ -444,7 +444,7 @@ class KoiterShell : public ShellStyle {
   double estimate_omega(Simulation& sim) {
     const auto& g = mesh();
     const int n = g.mesh.n_nodes();
-    std::vector<Vec3> x = sim.nodes().x, f(x.size()), v(n);
+    std::vector<Vec3> x = sim.nodes().x, v(n);
     const Property<int>* mask = sim.nodes().find<int>("dof_mask");
     auto free = [&](int i) { return !(mask && (*mask)[base_ + i] == 7); };
     std::mt19937_64 rng(12345);
@@ -493,8 +493,6 @@ class KoiterShell : public ShellStyle {
           "shell %s: omega_max %.4g (power iteration, +10%%), membrane wave 2c/l_min "
           "%.4g, l_min %.4g\n",
           id().c_str(), omega, wave, lmin_);
-    wave_omega_ = wave;
-    (void)f;
     return omega;
   }
 
@@ -520,7 +518,7 @@ class KoiterShell : public ShellStyle {
   long growth_version_ = -1;
   double growth_time_ = -1;
   bool constraints_done_ = false;
-  double omega_ = 0, wave_omega_ = 0;
+  double omega_ = 0;
   double stretch_ = 0, bend_ = 0, area_ = 0, ub_integral_ = 0, ghost_energy_ = 0;
   std::vector<double> face_ub_, face_us_, face_area_;
 };

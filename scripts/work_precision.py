@@ -52,9 +52,12 @@ FAST_INTEGRATORS = ["verlet", "gear5"]
 DEFAULT_ALPHAS = [0.1, 3.0]
 DEFAULT_BCS = ["pinned", "clamped"]
 DECK_FILES = {"cantilever": "cantilever2d.lua", "buckling": "buckling2d.lua",
-              "michell": "michell.lua"}
+              "michell": "michell.lua", "plate": "plate_load.lua"}
 # Michell's ring needs more nodes than a beam to be resolved (12 is too coarse)
 MICHELL_NODES = [12, 24, 48]
+# Koiter shell plates (cells per side), both supports (FIRE to static equilibrium)
+PLATE_CELLS = [8, 16, 32]
+PLATE_SUPPORTS = ["simply_supported", "clamped"]
 
 # CSV columns that always come first (in this order); the remaining RESULT
 # keys follow in first-seen order, then the bookkeeping columns.
@@ -194,6 +197,10 @@ def variant_key(row):
                 "cantilever, alpha = %s (%s), %s" % (label, kind, model))
     if case.startswith("michell"):
         return ((2, 0, "michell"), "michell ring, cosserat rod (gear6)")
+    if case.startswith("plate"):
+        bc = row.get("bc", "")
+        return ((2, 1 + (PLATE_SUPPORTS.index(bc) if bc in PLATE_SUPPORTS else 2), bc),
+                "plate under uniform load, %s, koiter shell (fire)" % bc)
     if case.startswith("buckling"):
         bc = row.get("bc", "")
         order = DEFAULT_BCS.index(bc) if bc in DEFAULT_BCS else len(DEFAULT_BCS)
@@ -429,6 +436,13 @@ def build_plan(args, decks):
         for nodes in args.michell_nodes:
             base = {"case": "michell", "nodes": str(nodes), "integrator": "gear6"}
             plan.append((decks["michell"], [("nodes", nodes), ("iterations", 12)], base))
+    if "plate" in decks:
+        # the ladder is over cells per side; the rows report nodes = (cells + 1)^2
+        for support in PLATE_SUPPORTS:
+            for cells in args.plate_cells:
+                base = {"case": "plate_load", "bc": support, "nodes": str((cells + 1) ** 2),
+                        "integrator": "fire"}
+                plan.append((decks["plate"], [("n", cells), ("support", support)], base))
     return plan
 
 
@@ -465,6 +479,8 @@ def main(argv=None):
                    help="beam models: bend2d (2D bending springs), rod3d (3D discrete elastic "
                         "rod, bond rod/straight), cosserat (quaternion rod; not with fire) "
                         "(default %(default)s)")
+    p.add_argument("--plate-cells", type=int, nargs="+", default=PLATE_CELLS,
+                   help="cells per side of the shell plate ladder")
     p.add_argument("--michell-nodes", type=int, nargs="+", default=MICHELL_NODES,
                    help="node counts of the Michell ring (default %(default)s)")
     p.add_argument("--bcs", nargs="+", default=DEFAULT_BCS,

@@ -3,7 +3,9 @@
 // 1-rings, and the ghost layer that completes the rings of boundary nodes.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -68,6 +70,26 @@ struct GhostedMesh {
   std::vector<int> valence;    // of the completed mesh (ghost rings may be open)
 };
 GhostedMesh add_ghosts(const TriMesh& m);
+
+// Shortest and mean edge of the real triangles in the reference (each triangle's three
+// edges, so interior edges count twice): the length scales of elements, ghosts, contact.
+struct EdgeStats {
+  double min = 0, mean = 0;
+};
+// (inline: the Newmark integrator uses it in builds without the shell family too)
+inline EdgeStats reference_edges(const GhostedMesh& g) {
+  EdgeStats e{std::numeric_limits<double>::max(), 0.0};
+  int n = 0;
+  for (int t = 0; t < g.n_real_tris; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const double l = (g.mesh.x[g.mesh.tri[t][k]] - g.mesh.x[g.mesh.tri[t][(k + 1) % 3]]).norm();
+      e.min = std::min(e.min, l);
+      e.mean += l;
+      ++n;
+    }
+  e.mean /= std::max(1, n);
+  return e;
+}
 
 // Throws a message naming the triangle when a real triangle has more than one
 // irregular node (valence != 6 in the completed mesh) or an incomplete ring.

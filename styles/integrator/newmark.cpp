@@ -159,12 +159,7 @@ class NewmarkIntegrator : public IntegratorStyle {
   }
   static double shortest_edge(Simulation& sim) {
     double l = sim.topology().min_rest_length();
-    for (auto& s : sim.topology().surfaces) {
-      const auto& m = s.mesh->mesh;
-      for (int t = 0; t < s.mesh->n_real_tris; ++t)
-        for (int k = 0; k < 3; ++k)
-          l = std::min(l, (m.x[m.tri[t][k]] - m.x[m.tri[t][(k + 1) % 3]]).norm());
-    }
+    for (auto& s : sim.topology().surfaces) l = std::min(l, shell::reference_edges(*s.mesh).min);
     return l < 1e299 ? l : 1.0;
   }
   void note(Simulation& sim, double dt, double eta, const std::string& why) {

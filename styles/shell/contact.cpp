@@ -73,15 +73,7 @@ class ShellContactPair : public PairStyle {
     if (!s) throw InputError("pair 'contact/shell': no mesh named '" + p.str("mesh") + "'");
     mesh_ = s->mesh;
     base_ = s->first_node;
-    double sum = 0;
-    int n = 0;
-    const auto& m = mesh_->mesh;
-    for (int t = 0; t < mesh_->n_real_tris; ++t)
-      for (int k = 0; k < 3; ++k) {
-        sum += (m.x[m.tri[t][k]] - m.x[m.tri[t][(k + 1) % 3]]).norm();
-        ++n;
-      }
-    mean_edge_ = sum / n;
+    mean_edge_ = shell::reference_edges(*mesh_).mean;
     k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
     skin_ = p.has("skin") ? p.real("skin") : h_;
     near_ = p.has("near_distance") ? p.real("near_distance") : h_;

@@ -181,17 +181,11 @@ class KoiterShell : public ShellStyle {
     else
       q = {{1.0 / 3, 1.0 / 3, 0.5}};
     std::vector<double> lumped(g.mesh.n_nodes(), 0.0);
-    double edge_sum = 0;
-    int edge_n = 0;
-    lmin_ = 1e300;
+    const shell::EdgeStats edges = shell::reference_edges(g);
+    lmin_ = edges.min;
+    mean_edge_ = edges.mean;
     for (int t = 0; t < n_elem_; ++t) {
       const shell::Tri c = shell::oriented_element(g, t);
-      for (int k = 0; k < 3; ++k) {
-        const double l = (g.mesh.x[c[k]] - g.mesh.x[c[(k + 1) % 3]]).norm();
-        edge_sum += l;
-        ++edge_n;
-        lmin_ = std::min(lmin_, l);
-      }
       for (auto& [v, w, wt] : q) {
         shell::Stencil st = shell::evaluate(g, c, v, w);
         GaussPoint gp;
@@ -230,7 +224,6 @@ class KoiterShell : public ShellStyle {
         gauss_.push_back(gp);
       }
     }
-    mean_edge_ = edge_sum / std::max(1, edge_n);
     // supported ghosts copy (the negative of) an interior partner
     partner_.clear();
     for (auto& gh : g.ghosts) {

@@ -226,6 +226,15 @@ ParamSpec mesh_spec() {
   s.real("inner_radius", "inner radius of a ring").positive();
   s.vector("size", "rectangle sides {lx, ly}").length(2, 2);
   s.real("edge", "target edge length (disc default: 5 refinements of a hexagon)").positive();
+  s.real("refine_center",
+         "disc: radius of a core refined refine_levels more times (red-green, level k within "
+         "refine_center / 2^(k-1)), to resolve an e-cone's apex (MODELS.md §6.12)")
+      .def(0.0)
+      .nonnegative();
+  s.integer("refine_levels", "disc: extra refinement levels of the core (edge / 2^levels there)")
+      .def(0.0)
+      .min(0)
+      .max(6);
   s.integer("refine", "extra global refinements at edge midpoints (spheres re-projected)")
       .def(0.0)
       .min(0)
@@ -407,7 +416,8 @@ int l_mesh(lua_State* L) {
   if (p.has("file")) {
     m = shell::read_mesh(p.str("file"));
   } else if (p.str("shape") == "disc") {
-    m = shell::make_disc(R, p.has("edge") ? levels(R, p.real("edge")) : 5);
+    m = shell::make_disc(R, p.has("edge") ? levels(R, p.real("edge")) : 5, p.real("refine_center"),
+                         static_cast<int>(p.integer("refine_levels")));
   } else if (p.str("shape") == "ring") {
     if (!p.has("inner_radius")) throw InputError("mesh: a ring needs inner_radius");
     const double ri = p.real("inner_radius");

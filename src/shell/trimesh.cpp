@@ -42,27 +42,104 @@ void refine(TriMesh& m) {
   m.tri = std::move(out);
 }
 
-TriMesh make_disc(double radius, int refinements) {
+void refine_where(TriMesh& m, const std::function<bool(const Vec3&)>& inside) {
+  const int nt = m.n_tris();
+  std::vector<char> red(nt, 0);
+  std::map<std::uint64_t, int> split;  // edge -> midpoint node (-1 until created)
+  auto mark = [&](int t) {
+    red[t] = 1;
+    for (int k = 0; k < 3; ++k) split.try_emplace(edge_key(m.tri[t][k], m.tri[t][(k + 1) % 3]), -1);
+  };
+  for (int t = 0; t < nt; ++t)
+    if (inside((m.x[m.tri[t][0]] + m.x[m.tri[t][1]] + m.x[m.tri[t][2]]) / 3.0)) mark(t);
+  // closure: a triangle with two or three split edges is split into four as well
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int t = 0; t < nt; ++t) {
+      if (red[t]) continue;
+      int n = 0;
+      for (int k = 0; k < 3; ++k)
+        n += split.count(edge_key(m.tri[t][k], m.tri[t][(k + 1) % 3])) ? 1 : 0;
+      if (n >= 2) {
+        mark(t);
+        grew = true;
+      }
+    }
+  }
+  auto midpoint = [&](int a, int b) {
+    int& id = split.at(edge_key(a, b));
+    if (id < 0) {
+      id = m.n_nodes();
+      m.x.push_back(0.5 * (m.x[a] + m.x[b]));
+    }
+    return id;
+  };
+  std::vector<Tri> out;
+  for (int t = 0; t < nt; ++t) {
+    const Tri tr = m.tri[t];
+    if (red[t]) {
+      const int a = tr[0], b = tr[1], c = tr[2];
+      const int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      out.insert(out.end(), {{a, ab, ca}, {ab, b, bc}, {ca, bc, c}, {ab, bc, ca}});
+      continue;
+    }
+    bool done = false;
+    for (int k = 0; k < 3 && !done; ++k) {
+      const int a = tr[k], b = tr[(k + 1) % 3], c = tr[(k + 2) % 3];
+      if (split.count(edge_key(a, b))) {  // green: halve towards the opposite vertex
+        const int ab = midpoint(a, b);
+        out.insert(out.end(), {{a, ab, c}, {ab, b, c}});
+        done = true;
+      }
+    }
+    if (!done) out.push_back(tr);
+  }
+  m.tri = std::move(out);
+}
+
+TriMesh make_disc(double radius, int refinements, double core_radius, int core_levels) {
   if (radius <= 0) throw InputError("disc mesh: radius must be positive");
   if (refinements < 0 || refinements > 9)
     throw InputError("disc mesh: refinements must be in [0, 9]");
+  if (core_levels < 0 || core_levels > 6)
+    throw InputError("disc mesh: core refinement levels must be in [0, 6]");
+  if (core_levels > 0 && (core_radius <= 0 || core_radius >= radius))
+    throw InputError("disc mesh: the refined core needs 0 < core radius < radius");
+  if (core_levels > 0 && refinements < 2)
+    throw InputError("disc mesh: a refined core needs an edge of at most radius/4");
   TriMesh m;
   m.x.push_back(Vec3::Zero());
   for (int k = 0; k < 6; ++k)
     m.x.push_back(Vec3(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0.0));
   for (int k = 0; k < 6; ++k) m.tri.push_back({0, 1 + k, 1 + (k + 1) % 6});
-  for (int r = 0; r < refinements; ++r) refine(m);
-  // hexagon -> disc: keep the direction, map the hexagonal norm to the radius
+  // the hexagonal norm: 1 on the hexagon's boundary, mapped to the disc's radius below
   const double apothem = std::cos(M_PI / 6);
+  auto hexnorm = [&](const Vec3& p) {
+    double n = 0.0;
+    for (int k = 0; k < 6; ++k) {
+      const double a = M_PI / 6 + k * M_PI / 3;
+      n = std::max(n, (p.x() * std::cos(a) + p.y() * std::sin(a)) / apothem);
+    }
+    return n;
+  };
+  if (core_levels == 0) {
+    for (int r = 0; r < refinements; ++r) refine(m);
+  } else {
+    // red-green refinement of the core, level k within core_radius / 2^(k-1), on the
+    // mesh one level coarser; the final global refinement leaves every irregular node
+    // of the green transitions alone in its triangles (MODELS.md §6.6)
+    for (int r = 0; r + 1 < refinements; ++r) refine(m);
+    for (int k = 0; k < core_levels; ++k) {
+      const double rk = core_radius / radius / std::pow(2.0, k);
+      refine_where(m, [&](const Vec3& c) { return hexnorm(c) < rk; });
+    }
+    refine(m);
+  }
+  // hexagon -> disc: keep the direction, map the hexagonal norm to the radius
   for (Vec3& p : m.x) {
     const double len = p.norm();
     if (len < 1e-14) continue;
-    double hexnorm = 0.0;
-    for (int k = 0; k < 6; ++k) {
-      const double a = M_PI / 6 + k * M_PI / 3;
-      hexnorm = std::max(hexnorm, (p.x() * std::cos(a) + p.y() * std::sin(a)) / apothem);
-    }
-    p *= radius * hexnorm / len;
+    p *= radius * hexnorm(p) / len;
   }
   return m;
 }

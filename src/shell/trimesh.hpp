@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -24,7 +25,9 @@ struct TriMesh {
 
 // --- generators (unit normals along +z for the flat ones)
 // Hexagon of 6 triangles refined `refinements` times, nodes moved radially onto the disc.
-TriMesh make_disc(double radius, int refinements);
+// core_levels > 0 refines the core further (red-green): level k within
+// core_radius / 2^(k-1), so the edge at the centre is 2^-core_levels of the outer edge.
+TriMesh make_disc(double radius, int refinements, double core_radius = 0.0, int core_levels = 0);
 // Structured annulus: n_r rings of edges between r_in and r_out, n_phi nodes round.
 TriMesh make_ring(double r_in, double r_out, int n_r, int n_phi);
 // Structured rectangle [0,lx]x[0,ly] split into nx x ny quads, each with one diagonal
@@ -36,6 +39,11 @@ TriMesh make_sphere(double radius, int refinements);
 // One Loop refinement of the connectivity: every triangle split into four, new
 // nodes at edge midpoints (positions are not smoothed; generators project them).
 void refine(TriMesh& m);
+// Red-green refinement of the triangles whose centroid is `inside`: those split into four
+// (with every triangle that would get two split edges), their neighbours with one split
+// edge halved. The nodes on the transition get valences 5, 7 or 8: one global refine()
+// afterwards isolates them for Loop's irregular elements.
+void refine_where(TriMesh& m, const std::function<bool(const Vec3&)>& inside);
 
 // Reads a Wavefront OBJ ("v" and "f" lines; polygons must be triangles) or an OFF
 // file, chosen by extension; throws with the file and line on bad input.

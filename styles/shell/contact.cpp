@@ -44,7 +44,7 @@ class ShellContactPair : public PairStyle {
     s.string("dense",
              "closest: one force per triangle pair along its closest points (MODELS.md §6.10); "
              "all: one per vertex-triangle and edge-edge feature pair within h, a smoother sum "
-             "that lets relaxations converge when faceted contacts slide (frictionless only)")
+             "that lets relaxations converge when faceted contacts slide")
         .def(std::string("closest"))
         .choices({"closest", "all"});
     s.real("far_distance",
@@ -61,7 +61,11 @@ class ShellContactPair : public PairStyle {
         .def(0.0)
         .nonnegative();
     s.real("mu_dynamic", "dynamic friction coefficient (default 0.9 mu_static)").nonnegative();
-    s.real("stick_stiffness", "tangential stick spring per contact (default k)").positive();
+    s.real("stick_stiffness",
+           "tangential stick spring of a triangle pair carrying the normal force k (at r = h/2); "
+           "it scales with the pair's normal force, so every pair of a contact patch slips at "
+           "the same tangential displacement mu k / stick_stiffness (default 4 k / h: h mu / 4)")
+        .positive();
     s.real("slip_velocity", "slipping contacts slower than this stick again")
         .def(1e-4)
         .nonnegative();
@@ -80,8 +84,6 @@ class ShellContactPair : public PairStyle {
     far_ = p.real("far_distance");
     dense_all_ = p.str("dense") == "all";
     set_friction(p);
-    if (dense_all_ && friction_.frictional())
-      throw InputError("pair 'contact/shell': friction needs dense = \"closest\"");
     face_flag_.assign(mesh_->n_real_tris, 0.0);
     // dense = all: each vertex and each edge is owned by one of its triangles, so that
     // a vertex-triangle or edge-edge term is summed once, not once per triangle pair
@@ -106,7 +108,7 @@ class ShellContactPair : public PairStyle {
   void set_friction(const ParamValues& p) {
     friction_.mu_static = p.real("mu_static");
     friction_.mu_dynamic = p.has("mu_dynamic") ? p.real("mu_dynamic") : 0.9 * friction_.mu_static;
-    friction_.stick_stiffness = p.has("stick_stiffness") ? p.real("stick_stiffness") : k_;
+    friction_.stick_stiffness = p.has("stick_stiffness") ? p.real("stick_stiffness") : 4 * k_ / h_;
     friction_.slip_velocity = p.real("slip_velocity");
     if (friction_.mu_dynamic > friction_.mu_static)
       throw InputError("pair 'contact/shell': mu_dynamic must not exceed mu_static");
@@ -183,6 +185,10 @@ class ShellContactPair : public PairStyle {
       const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
       if (c.near && n1.dot(n2) > 0) continue;  // near neighbours touch only across a ridge
       if (separated(A, B, n1, n2)) continue;
+      // normal forces of this pair; friction acts once per pair on their sum, at the
+      // force-weighted contact point (so dense = all and closest share one stick spring)
+      Vec3 normal_sum = Vec3::Zero(), w1_sum = Vec3::Zero(), w2_sum = Vec3::Zero();
+      double mag_sum = 0;
       auto apply = [&](const shell::TrianglePair& tp) {
         Vec3 dir = tp.d;
         if (tp.dist > 0) {
@@ -195,18 +201,18 @@ class ShellContactPair : public PairStyle {
         double U = k_ * (h_ * h_ / r - r + 2 * h_ * std::log(r / h_));
         if (tp.dist < rc) U += mag * (rc - tp.dist);
         energy += U;
-        Vec3 fv = mag * dir;
-        if (friction_.frictional()) {
-          Vec3 vrel = Vec3::Zero();
-          for (int k = 0; k < 3; ++k)
-            vrel += tp.w1[k] * v[base_ + T[c.t1][k]] - tp.w2[k] * v[base_ + T[c.t2][k]];
-          fv += friction_.friction(mag, dir, vrel, sim.dt, c.friction);
-        }
+        const Vec3 fv = mag * dir;
         for (int k = 0; k < 3; ++k) {
           f[base_ + T[c.t1][k]] += tp.w1[k] * fv;
           f[base_ + T[c.t2][k]] -= tp.w2[k] * fv;
         }
         force_sum_ += mag;
+        normal_sum += fv;
+        mag_sum += mag;
+        for (int k = 0; k < 3; ++k) {
+          w1_sum[k] += mag * tp.w1[k];
+          w2_sum[k] += mag * tp.w2[k];
+        }
         Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
         for (int k = 0; k < 3; ++k) {
           p1 += tp.w1[k] * A[k];
@@ -235,6 +241,23 @@ class ShellContactPair : public PairStyle {
       if (!touching) {
         c.friction.active = false;
         continue;
+      }
+      const double normal = normal_sum.norm();
+      if (friction_.frictional() && normal > 0) {
+        const Vec3 w1 = w1_sum / mag_sum, w2 = w2_sum / mag_sum;
+        Vec3 vrel = Vec3::Zero();
+        for (int k = 0; k < 3; ++k)
+          vrel += w1[k] * v[base_ + T[c.t1][k]] - w2[k] * v[base_ + T[c.t2][k]];
+        // a pair's stick spring scales with its normal force (contact size), so that the
+        // lightly loaded pairs at a patch's rim do not slip first and unzip the patch
+        ContactLaw law = friction_;
+        law.stick_stiffness *= normal / k_;
+        const Vec3 ft = law.friction(normal, normal_sum / normal, vrel, sim.dt, c.friction);
+
+        for (int k = 0; k < 3; ++k) {
+          f[base_ + T[c.t1][k]] += w1[k] * ft;
+          f[base_ + T[c.t2][k]] -= w2[k] * ft;
+        }
       }
       ++contacts_;
       if (c.dref > far_) ++far_contacts_;

@@ -124,6 +124,43 @@ TEST(TriMesh, GeneratorsAndGhosts) {
   }
 }
 
+// A disc whose core is refined red-green (e-cone apex): the transition nodes become
+// irregular (valence 5 or 7) but each stays alone in its triangles, the core edge is a
+// quarter of the outer one after two levels, no triangle degenerates, and Loop's limit
+// surface of a tilted planar control net stays on that plane everywhere.
+TEST(TriMesh, DiscWithRefinedCore) {
+  TriMesh d = make_disc(1.0, 3, 0.5, 2);
+  GhostedMesh g = add_ghosts(d);
+  EXPECT_NO_THROW(check_patches(g));
+  std::map<int, int> valences;
+  for (int i = 0; i < g.n_real_nodes; ++i)
+    if (d.x[i].norm() < 0.99) ++valences[g.valence[i]];
+  for (auto [v, n] : valences) EXPECT_TRUE(v >= 5 && v <= 7) << "valence " << v << " x" << n;
+  EXPECT_GT(valences[7], 0);
+  double core = 0, outer = 0, min_angle = M_PI;
+  int nc = 0, no = 0;
+  for (const Tri& t : d.tri) {
+    const Vec3 c = (d.x[t[0]] + d.x[t[1]] + d.x[t[2]]) / 3;
+    const double e = (d.x[t[0]] - d.x[t[1]]).norm();
+    if (c.norm() < 0.15) core += e, ++nc;
+    if (c.norm() > 0.8) outer += e, ++no;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = d.x[t[(k + 1) % 3]] - d.x[t[k]], b = d.x[t[(k + 2) % 3]] - d.x[t[k]];
+      min_angle = std::min(min_angle, std::acos(a.dot(b) / (a.norm() * b.norm())));
+    }
+  }
+  EXPECT_NEAR((core / nc) / (outer / no), 0.25, 0.05);
+  EXPECT_GT(min_angle, 15 * M_PI / 180);
+  for (auto& x : d.x) x.z() = 0.3 * x.x() - 0.2 * x.y() + 0.1;
+  GhostedMesh gp = add_ghosts(d);
+  for (int t = 0; t < gp.n_real_tris; ++t) {
+    const Vec3 x = eval_x(gp, evaluate(gp, oriented_element(gp, t), 0.2, 0.3));
+    EXPECT_NEAR(x.z(), 0.3 * x.x() - 0.2 * x.y() + 0.1, 1e-12);
+  }
+  EXPECT_THROW(make_disc(1.0, 3, 1.5, 1), InputError);
+  EXPECT_THROW(make_disc(1.0, 1, 0.5, 1), InputError);
+}
+
 TEST(TriMesh, ObjAndOffRoundTrip) {
   TriMesh m = make_ring(0.3, 1.0, 3, 12);
   for (const char* f : {"loop_test.obj", "loop_test.off"}) {

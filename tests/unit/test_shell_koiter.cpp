@@ -62,6 +62,13 @@ TEST(KoiterShell, ForcesAreTheGradientOfTheEnergy) {
       EXPECT_LT(err, 2e-6) << boundary << " area factor " << area;
     }
   }
+  // a disc with a red-green refined core (irregular nodes of valence 5 and 7)
+  {
+    auto core = shell_scene(shell::make_disc(1.0, 2, 0.5, 1),
+                            P({{"thickness", 0.02}, {"boundary", std::string("mirror")}}));
+    randomize(*core, 0.02, 5);
+    EXPECT_LT(fd_force_error(*core, 1e-6), 2e-6);
+  }
   // the 1-point rule is a gradient too
   auto sim = shell_scene(
       shell::make_disc(1.0, 2),

@@ -1,0 +1,99 @@
+-- The e-cone scene shared by econe.lua (S-1, S-4, S-5) and econe_stability.lua (S-2):
+-- a free disc (or ring) growing circumferentially (MODELS.md §6.8), Koiter shell with
+-- mirror ghosts, faceted self-contact, rim-mode analysis, FIRE relaxations, a CSV log.
+local slender = require("slender")
+local M = {}
+
+-- opts: fast, h, edge, out, mu_static (contact friction, 0: frictionless); deck -v values
+-- override the defaults the same way in every e-cone deck.
+function M.build(opts)
+  local fast = opts.fast
+  local s = {}
+  s.h = slender.var("h", 0.02)
+  s.edge = slender.var("edge", fast and 0.125 or 0.0625)
+  s.young, s.poisson = 1e4, 0.3
+  -- equilibrium: largest nodal force below ftol_rel * Y h edge^2 (the deck's tolerance)
+  s.ftol = slender.var("ftol_rel", 1e-5) * s.young * s.h * s.edge * s.edge
+  s.max_steps = slender.var("max_steps", 200000)
+  s.out = slender.var("out", opts.out)
+  os.execute("mkdir -p " .. s.out)
+  local sim = slender.simulation{dimension = 3, seed = slender.var("seed", 1)}
+  s.sim = sim
+  s.inner = slender.var("inner", 0)
+  local noise = slender.var("noise", 1e-4)  -- out-of-plane noise amplitude (MODELS.md §6.12)
+  if s.inner > 0 then
+    s.nodes, s.tris = sim:mesh{name = "disc", shape = "ring", radius = 1, inner_radius = s.inner,
+                               edge = s.edge, noise = noise}
+  else
+    s.nodes, s.tris = sim:mesh{name = "disc", shape = "disc", radius = 1, edge = s.edge,
+                               noise = noise, refine_center = slender.var("refine_center", 0),
+                               refine_levels = slender.var("refine_levels", 0)}
+  end
+  -- an initial shape with n wings (S-5), on top of the random noise
+  local mode, mode_amp = slender.var("mode", 0), slender.var("mode_amp", 1e-3)
+  if mode > 0 then
+    for i = 1, s.nodes do
+      local x, y, z = sim:position(i)
+      local r, a = math.sqrt(x * x + y * y), math.atan(y, x)
+      sim:set_position(i, {x, y, z + mode_amp * r * r * math.cos(mode * a)})
+    end
+  end
+  sim:growth("g", "econe", {phi_e = 0})
+  sim:shell("koiter", {mesh = "disc", thickness = s.h, young = s.young, poisson = s.poisson,
+                       growth = "g", boundary = slender.var("boundary", "mirror")})
+  -- near neighbours (touching only across a ridge) within 4 h in the reference; the kissing
+  -- angle counts only contacts between triangles more than R/4 apart in the reference (the
+  -- wings): the sharp apex of a thick cone touches itself across the tip long before.
+  -- dense = "all" sums the forces of every feature pair within h: relaxations after contact
+  -- converge (with the closest pair only, FIRE stalls where the closest feature switches)
+  sim:pair("contact/shell", {mesh = "disc", thickness = s.h, young = s.young,
+                             near_distance = slender.var("near_distance", 4 * s.h),
+                             far_distance = slender.var("far_distance", 0.25),
+                             dense = slender.var("dense", "all"),
+                             mu_static = opts.mu_static or 0})
+  sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + s.inner)})
+  sim:integrator("fire", {})
+  sim:dump("surface", "shell", {file = s.out .. "/surface.h5", every = 1000000000, mesh = "disc",
+                                faces = {"koiter.Ub", "koiter.Us", "contact/shell.contact"}})
+  print(string.format("e-cone: h = %g, %d nodes, %d triangles, ftol = %.3g", s.h, s.nodes, s.tris,
+                      s.ftol))
+
+  local t0 = slender.clock()
+  s.t0 = t0
+  -- grow to phi_e and relax to equilibrium; returns the FIRE steps
+  function s.relax(phi)
+    sim:modify("g", {phi_e = phi})
+    return sim:minimize{ftol = s.ftol, max_steps = s.max_steps}
+  end
+  -- a CSV log of equilibrium states; extra columns (e.g. the branch) go first
+  function s.open_log(name, extra)
+    s.extra = extra or {}
+    local csv = io.open(s.out .. "/" .. name, "w")
+    local head = {}
+    for _, k in ipairs(s.extra) do head[#head + 1] = k end
+    csv:write(table.concat(head, ",") .. (#head > 0 and "," or "") ..
+              "phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,steps,wall_s\n")
+    s.csv = csv
+  end
+  function s.record(phi, steps, extra_values)
+    local row = {}
+    for _, v in ipairs(extra_values or {}) do row[#row + 1] = tostring(v) end
+    for _, v in ipairs{phi, sim:value("koiter.stretch"), sim:value("koiter.bend"),
+                       sim:value("koiter.Eb_hat"), sim:value("koiter.area"), sim:value("rim.n"),
+                       sim:value("rim.a2"), sim:value("rim.a3"), sim:value("contact/shell.contacts"),
+                       sim:value("contact/shell.far_contacts"), sim:value("contact/shell.gamma"),
+                       steps, slender.clock() - t0} do
+      row[#row + 1] = string.format("%.8g", v)
+    end
+    s.csv:write(table.concat(row, ",") .. "\n")
+    s.csv:flush()
+    print(string.format("%sphi_e %.4f  Eb_hat %.4f  E_s/E_b %.3f  wings %d  contacts %d  gamma %.3f  steps %d",
+                        extra_values and (table.concat(extra_values, " ") .. "  ") or "", phi,
+                        sim:value("koiter.Eb_hat"),
+                        sim:value("koiter.stretch") / sim:value("koiter.bend"), sim:value("rim.n"),
+                        sim:value("contact/shell.contacts"), sim:value("contact/shell.gamma"), steps))
+  end
+  return s
+end
+
+return M

@@ -8,6 +8,7 @@
 #include <lua.hpp>
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -276,6 +277,10 @@ int l_simulation(lua_State* L) {
 int l_gc(lua_State* L) {
   auto* box = static_cast<SimBox*>(luaL_testudata(L, 1, kSimMeta));
   if (box && box->sim) {
+    if (!context(L)->opt.inventory.empty()) {
+      std::ofstream inv(context(L)->opt.inventory, std::ios::app);
+      inv << box->sim->inventory_json() << "\n";
+    }
     delete box->sim;
     box->sim = nullptr;
   }

@@ -14,6 +14,7 @@ struct DeckOptions {
   std::string path;
   std::map<std::string, std::string> vars;  // -v name=value overrides
   bool quiet = false;
+  std::string inventory;  // --inventory FILE: one JSON line per simulation when it is freed
 };
 
 // Registers the `slender` module (global and for require) in a Lua state.

@@ -10,7 +10,8 @@ namespace {
 
 void usage() {
   std::printf(
-      "usage: slender DECK.lua [-v name=value ...] [-q]\n"
+      "usage: slender DECK.lua [-v name=value ...] [-q] [--inventory FILE]\n"
+      "       (--inventory appends what each simulation held, one JSON line each)\n"
       "       slender --list-styles\n"
       "       slender --markdown-styles  (the style reference, docs/styles.md)\n"
       "       slender --style-pages DIR  (one page per style, docs/styles/)\n"
@@ -149,6 +150,12 @@ int main(int argc, char** argv) {
     }
     if (a == "-q") {
       opt.quiet = true;
+    } else if (a == "--inventory") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "slender: --inventory needs a file\n");
+        return 2;
+      }
+      opt.inventory = argv[++i];
     } else if (a == "-v") {
       if (i + 1 >= argc || !std::strchr(argv[i + 1], '=')) {
         std::fprintf(stderr, "slender: -v needs name=value\n");

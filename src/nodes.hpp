@@ -58,6 +58,7 @@ class PropertyBase {
   virtual int ncomp() const = 0;
   virtual void resize(size_t n) = 0;
   virtual size_t size() const = 0;
+  virtual size_t bytes() const = 0;  // memory held by the values
   // Flat copies, ncomp values per node, for checkpoints and dumps.
   virtual std::vector<double> to_flat() const = 0;
   virtual void from_flat(const std::vector<double>& flat) = 0;
@@ -77,6 +78,7 @@ class Property final : public PropertyBase {
   int ncomp() const override { return PropertyTraits<T>::ncomp; }
   void resize(size_t n) override { data_.resize(n, init_); }
   size_t size() const override { return data_.size(); }
+  size_t bytes() const override { return data_.capacity() * sizeof(T); }
   T& operator[](size_t i) { return data_[i]; }
   const T& operator[](size_t i) const { return data_[i]; }
   std::vector<T>& values() { return data_; }

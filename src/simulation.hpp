@@ -147,6 +147,12 @@ class Simulation {
   // Styles that compute several kinds of energy add the others here during compute().
   void add_energy(const std::string& category, double e) { energy_[category] += e; }
 
+  // What the scene holds, as one JSON object: node properties and extra coordinates
+  // with their bytes, styles by family, neighbour structures, chains and surfaces.
+  // (Leave out what a scene does not need: the example tests compare it with what
+  // each deck uses.)
+  std::string inventory_json() const;
+
   // --- observables
   double kinetic_energy() const;
   double potential_energy() const;

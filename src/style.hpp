@@ -63,6 +63,8 @@ class PairStyle : public Style {
   virtual void setup(Simulation&) {}
   virtual double compute(Simulation& sim) = 0;
   virtual double max_frequency(const Simulation& sim) const = 0;
+  // The neighbour search this pair builds (for the scene inventory), e.g. "linked cells".
+  virtual std::string neighbor_structure() const { return "pair list"; }
 };
 
 // Step stages a fix can act at.

@@ -133,6 +133,7 @@ class NodeEdgeContactPair : public PairStyle {
         law_.tangent_stiffness(0.1 * d_) + (law_.frictional() ? law_.stick_stiffness : 0.0);
     return std::sqrt(2.0 * k / m);
   }
+  std::string neighbor_structure() const override { return "linked cells + node-edge pair list"; }
   std::vector<std::string> value_keys() const override { return {"contacts", "pairs", "builds"}; }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;

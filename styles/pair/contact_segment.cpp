@@ -129,6 +129,7 @@ class SegmentContactPair : public PairStyle {
         law.tangent_stiffness(0.1 * a_) + (law.frictional() ? law.stick_stiffness : 0.0);
     return std::sqrt(2.0 * k / m);
   }
+  std::string neighbor_structure() const override { return "linked cells + segment pair list"; }
   std::vector<std::string> value_keys() const override { return {"contacts", "pairs", "builds"}; }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;

@@ -266,6 +266,7 @@ class ShellContactPair : public PairStyle {
     return energy;
   }
 
+  std::string neighbor_structure() const override { return "voxels + triangle pair list"; }
   std::vector<std::string> value_keys() const override {
     return {"contacts", "far_contacts", "force", "gamma", "pairs", "rebuilds"};
   }

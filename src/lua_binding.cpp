@@ -8,9 +8,9 @@
 #include <lua.hpp>
 
 #include <chrono>
-#include <fstream>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <sstream>
 

@@ -412,8 +412,8 @@ std::string Simulation::inventory_json() const {
   o << "], \"styles\": [";
   bool first = true;
   auto style = [&](const char* family, const Style& s) {
-    o << (first ? "" : ", ") << "{\"family\": " << q(family) << ", \"style\": "
-      << q(s.style_name()) << ", \"id\": " << q(s.id()) << "}";
+    o << (first ? "" : ", ") << "{\"family\": " << q(family) << ", \"style\": " << q(s.style_name())
+      << ", \"id\": " << q(s.id()) << "}";
     first = false;
   };
   for (auto& s : shells_) style("shell", *s);
@@ -566,9 +566,20 @@ void Simulation::check_guard(long) {
       }
     }
     if (vmax * dt > guard.max_step_fraction * lmin) {
+      // advise from the last good state's speed when this one has already blown up
+      double vgood = 0.0;
+      for (const Vec3& vg : good_v_) vgood = std::max(vgood, vg.norm());
+      const double vref = good_step_ >= 0 && vmax > 10 * vgood && vgood > 0 ? vgood : vmax;
       std::ostringstream os;
-      os << "node " << imax + 1 << " moves " << vmax * dt << " per step, more than "
-         << guard.max_step_fraction << " of the shortest rest length " << lmin;
+      os << "node " << imax + 1 << " moves " << vmax * dt << " per step (speed " << vmax
+         << "), more than " << guard.max_step_fraction << " of the shortest rest length " << lmin;
+      // above the stable step the speed is a symptom: fail() names the stable dt instead
+      const double limit = suggest_dt(1.0);
+      if (!(limit > 0) || dt <= limit)
+        os << ", so contacts can be missed; at "
+           << (vref < vmax ? "the last good state's " : "this ")
+           << "speed dt <= " << 0.5 * guard.max_step_fraction * lmin / vref
+           << " keeps it to half of that (or slow the driving down)";
       fail(os.str(), step);
     }
   }

@@ -1,6 +1,7 @@
 #include "shell/surface.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <random>
 
 #include "simulation.hpp"
@@ -11,6 +12,17 @@ Surface& add_surface(Simulation& sim, const std::string& name, const TriMesh& me
   if (sim.dimension() != 3) throw InputError("mesh: shells need a 3D simulation");
   if (sim.topology().find_surface(name) || sim.has_group(name))
     throw InputError("mesh: the name '" + name + "' is already used");
+  // a collapsed triangle has no tangent plane: refuse it here, not as NaN later
+  for (int t = 0; t < mesh.n_tris(); ++t) {
+    const auto& tr = mesh.tri[t];
+    const Vec3 a = mesh.x[tr[1]] - mesh.x[tr[0]], b = mesh.x[tr[2]] - mesh.x[tr[0]];
+    const double longest = std::max({a.squaredNorm(), b.squaredNorm(), (a - b).squaredNorm()});
+    if (!(a.cross(b).norm() > 1e-10 * longest))
+      throw InputError("mesh '" + name + "': triangle " + std::to_string(t + 1) + " (nodes " +
+                       std::to_string(tr[0] + 1) + " " + std::to_string(tr[1] + 1) + " " +
+                       std::to_string(tr[2] + 1) +
+                       ") is degenerate (zero area): merge or move its nodes");
+  }
   auto g = std::make_shared<GhostedMesh>(add_ghosts(mesh));
   check_patches(*g);
   Surface s;

@@ -48,7 +48,7 @@ function M.build(p)
     mu_static = mu, mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s })
   sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(k1 * m) })
   sim:fix("feed", "inject/wire", { chain = "wire", radius = r, speed = s, diameter = d,
-    jam_force = 0.1 * k1 * d, jam_window = 1000, max_phi = max_phi })
+    jam_force = slender.var("jam_force", 0.1 * k1 * d), jam_window = 1000, max_phi = max_phi })
   -- dt = 0.01 sqrt(m / k1): half of MODELS.md's [C] default 0.02 sqrt(m / k1), which
   -- still burst near jamming in 1 of 6 runs of the s study (f = 10, s = 0.06; the
   -- guard stopped it with a torn edge; with dt / 2 it jams cleanly). The nominal

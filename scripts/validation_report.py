@@ -1,0 +1,382 @@
+#!/usr/bin/python3
+"""Error against run time for every physics family slender ships: one report.
+
+Runs every validation case over its ladder of resolutions (nodes, cells, mesh edge),
+integrators and time steps, and writes
+
+    OUT/validation.md     per case: the reference and its source, a table (resolution,
+                          dt, relative error, wall time, throughput), the observed
+                          convergence order, and a log-log work-precision PNG
+    OUT/validation.csv    every run
+    OUT/validation/<case>.png
+
+The default OUT is docs/ (the report is docs/validation.md). --fast runs small ladders
+and checks that each case's error falls with at least its expected order (the CI test
+validation.fast_orders); it never asserts a time. Exit status: 0 ok, 1 a run failed or an
+order is below its expectation, 2 usage error.
+
+    /usr/bin/python3 scripts/validation_report.py               # the full report (about 1 h)
+    /usr/bin/python3 scripts/validation_report.py --fast --out /tmp/v
+    /usr/bin/python3 scripts/validation_report.py --cases plate_ss cylinder
+"""
+import argparse
+import csv
+import datetime
+import math
+import os
+import shlex
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO / "scripts"))
+import work_precision as wp  # noqa: E402  (RESULT parsing, git describe)
+
+EX = REPO / "examples"
+THEORY_KISS = 7.08  # MODELS.md A-1: phi_e^kiss -> 7.08 as h -> 0
+
+
+def nodes_h(n):  # a chain of n nodes on a unit length: segment length
+    return 1.0 / (int(n) - 1)
+
+
+def spiral_metric(work, result):
+    """Median |E_b - model| / E_b of the spiral scene against the corrected §2.8 model."""
+    import numpy as np
+    import crumple_stats as cs
+    rows = [r for r in cs.read([str(work / "spiral_thermo.csv")]) if "energy.bend" in r]
+    phi = np.array([r["feed.phi"] for r in rows])
+    E = np.array([r["energy.bend"] for r in rows])
+    keep = phi > 0
+    phi, E = phi[keep], E[keep]
+    R = float(result.get("f", 10))
+    m = cs.spiral_model(phi, R, 1.0, 60.0, False)
+    hi = phi <= 0.75
+    C = float(np.mean(E[hi] - m[hi]))  # the constant of the model, by least squares
+    rel = np.abs(E - m - C) / np.maximum(np.abs(E), 1e-300)
+    sel = hi & (E > 0.05 * E.max())
+    return float(np.median(rel[sel])), "phi up to %.2f" % phi.max()
+
+
+def spool_metric(work, result):
+    """Median |E_b - E_Purohit| / E_Purohit of the ordered (low-torsion) packing for
+    0.1 <= phi <= 0.3, where the inverse spool holds."""
+    import numpy as np
+    import pack3d_stats as ps
+    with open(work / "low_torsion_thermo.csv") as fh:
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(fh)]
+    R = float(result["R"])
+    YI = math.pi * 1000 / 4
+    phi = np.array([r["feed.phi"] for r in rows])
+    eb = np.array([r["energy.bend"] for r in rows]) * R / YI
+    _, model, _, _ = ps.purohit(phi, R)
+    sel = (phi >= 0.1) & (phi <= 0.3) & np.isfinite(model)
+    if sel.sum() < 3:
+        raise RuntimeError("fewer than 3 samples with 0.1 <= phi <= 0.3")
+    rel = np.abs(eb[sel] - model[sel]) / model[sel]
+    return float(np.median(rel)), "%d samples" % sel.sum()
+
+
+# Each case: a deck, fixed -v values, a ladder (name, full values, fast values), the
+# resolution's length scale h(value) for the observed order, the integrators, the
+# reference and its source, the order expected of the fast ladder (None: not checked),
+# and an optional metric(work_dir, result) -> (rel_error, note) instead of rel_error.
+CASES = [
+    dict(id="cantilever_small", family="wire 2D", title="2D cantilever, small deflection",
+         deck="validation/cantilever2d.lua", fixed={"alpha": 0.01, "model": "bend2d"},
+         ladder=("nodes", [11, 21, 41, 81], [11, 21, 41]), h=nodes_h,
+         integrators=(["verlet", "gear5", "fire"], ["fire"]), order=1.8,
+         reference="tip deflection of the extensible elastica with the wire's EA (shooting on "
+                   "theta'(0), RK4 + bisection, in the deck); alpha = PL^2/EI = 0.01, where it "
+                   "equals Euler-Bernoulli PL^3/3EI to 1e-4",
+         source="Timoshenko & Gere, Theory of Elastic Stability, §2; MODELS.md §2.1"),
+    dict(id="cantilever_large", family="wire 2D", title="2D cantilever, large deflection",
+         deck="validation/cantilever2d.lua", fixed={"alpha": 3, "model": "bend2d"},
+         ladder=("nodes", [11, 21, 41, 81], [11, 21, 41]), h=nodes_h,
+         integrators=(["verlet", "gear5", "fire"], ["fire"]), order=1.8, dt_ladder=True,
+         reference="tip position of the extensible elastica at alpha = 3 (shooting, in the deck; "
+                   "scripts/elastica.py re-derives it independently to 1e-10)",
+         source="Bisshopp & Drucker, Q. Appl. Math. 3 (1945) 272; MODELS.md §2.1"),
+    dict(id="buckling_pinned_2d", family="wire 2D", title="2D Euler buckling, pinned-pinned",
+         deck="validation/buckling2d.lua", fixed={"bc": "pinned", "model": "bend2d"},
+         ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
+         integrators=(["fire"], ["fire"]), order=1.8,
+         reference="critical load pi^2 EI / L^2 (bisection over runs, bracket 1.5e-5)",
+         source="Euler (1744); Timoshenko & Gere §2.2"),
+    dict(id="buckling_clamped_2d", family="wire 2D", title="2D Euler buckling, clamped-free",
+         deck="validation/buckling2d.lua", fixed={"bc": "clamped", "model": "bend2d"},
+         ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
+         integrators=(["fire"], ["fire"]), order=1.6,
+         reference="critical load pi^2 EI / (4 L^2)", source="Timoshenko & Gere §2.1"),
+    dict(id="buckling_clamped_3d", family="rod 3D", title="3D Euler buckling, clamped-free, discrete elastic rod",
+         deck="validation/buckling2d.lua", fixed={"bc": "clamped", "model": "rod3d"},
+         ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
+         integrators=(["fire"], ["fire"]), order=1.6,
+         reference="critical load pi^2 YI / (4 L^2)", source="Timoshenko & Gere §2.1; MODELS.md §3"),
+    dict(id="cantilever_rod3d", family="rod 3D", title="3D cantilever (alpha = 3), discrete elastic rod",
+         deck="validation/cantilever2d.lua", fixed={"alpha": 3, "model": "rod3d"},
+         ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
+         integrators=(["fire"], ["fire"]), order=1.6,
+         reference="the 2D elastica tip position (the rod bends in a plane)",
+         source="as the 2D cantilever; MODELS.md §3"),
+    dict(id="cantilever_cosserat", family="rod 3D", title="3D cantilever (alpha = 3), quaternion Cosserat rod",
+         deck="validation/cantilever2d.lua", fixed={"alpha": 3, "model": "cosserat"},
+         ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
+         integrators=(["gear5"], ["gear5"]), order=1.2,
+         reference="the 2D elastica tip position", source="as the 2D cantilever; MODELS.md §4"),
+    dict(id="michell", family="rod 3D", title="Michell's instability of a twisted ring (Cosserat rod)",
+         deck="validation/michell.lua", fixed={"iterations": 12}, fast_fixed={"iterations": 8},
+         ladder=("nodes", [12, 24, 48], [12, 24]), h=lambda n: 1.0 / int(n),
+         integrators=(["gear6"], ["gear6"]), order=1.5,
+         reference="critical total twist theta_c = 2 pi sqrt(3) YI / GJ of a closed naturally "
+                   "straight ring (bisection over runs)",
+         source="Michell, Messenger of Math. 19 (1889) 181; Goriely, J. Elasticity 84 (2006) 281; MODELS.md A-2"),
+    dict(id="plate_ss", family="shell", title="Square plate under uniform load, simply supported",
+         deck="validation/plate_load.lua", fixed={"support": "simply_supported"},
+         ladder=("n", [8, 16, 32], [8, 16]), h=lambda n: 1.0 / int(n),
+         integrators=(["fire"], ["fire"]), order=1.5,
+         reference="centre deflection alpha q a^4 / D, alpha = 0.00406235 (Navier series summed in the deck)",
+         source="Timoshenko & Woinowsky-Krieger, Theory of Plates and Shells, §30 eq. 139"),
+    dict(id="plate_clamped", family="shell", title="Square plate under uniform load, clamped",
+         deck="validation/plate_load.lua", fixed={"support": "clamped"},
+         ladder=("n", [8, 16, 32], [8, 16]), h=lambda n: 1.0 / int(n),
+         integrators=(["fire"], ["fire"]), order=0.8,
+         reference="centre deflection 0.00126 q a^4 / D (nu = 0.3); first order: the clamp fixes "
+                   "MODELS.md's three rows of nodes",
+         source="Timoshenko & Woinowsky-Krieger, Table 35"),
+    dict(id="cylinder", family="shell", title="Cylindrical bending of a Koiter shell",
+         deck="validation/cylinder_bend.lua", fixed={},
+         ladder=("n", [8, 16, 32, 64], [8, 16, 32]), h=lambda n: 1.0 / int(n),
+         integrators=(["none"], ["none"]), order=1.8,
+         reference="bending energy D kappa^2 A / 2 of a strip wrapped isometrically on a cylinder",
+         source="Timoshenko & Woinowsky-Krieger §2"),
+    dict(id="econe_kiss", family="shell", title="E-cone kissing angle (h = 0.02) against vanishing thickness",
+         deck="shells/econe.lua", fixed={"h": 0.02, "phi_max": 7.0}, fast_fixed={"fast": 1},
+         ladder=("edge", [0.125, 0.0625, 0.03125], [0.125]), h=float,
+         integrators=(["fire"], ["fire"]), order=None,
+         metric=lambda work, r: (abs(float(r["phi_kiss"]) - THEORY_KISS) / THEORY_KISS,
+                                 "phi_kiss = %s" % r["phi_kiss"]),
+         reference="phi_e^kiss -> 7.08 as h -> 0 (vanishing-thickness theory); at h = 0.02 the "
+                   "difference mixes discretisation with the finite thickness, and the uniform "
+                   "meshes under-resolve the core (refine_center/refine_levels refine it)",
+         source="MODELS.md A-1 and §7.2 S-1"),
+    dict(id="spiral_energy", family="wire 2D", title="Spiral-phase bending energy against its analytic model",
+         deck="crumple2d/spiral.lua", fixed={"output": "false"},
+         ladder=("f", [10], [10]), h=lambda f: 1.0 / float(f),
+         fast_fixed={"fast": 1}, integrators=(["gear5"], ["gear5"]), order=None, metric=spiral_metric,
+         reference="E_b(phi) = E_core + pi YI/d ln(R/R_c) + C (the corrected §2.8 model, C by least "
+                   "squares), median relative deviation for phi <= 0.75",
+         source="MODELS.md §2.8, A-3"),
+    dict(id="spool", family="rod 3D", title="Ordered 3D packing against the inverse spool",
+         deck="pack3d/low_torsion.lua", fixed={"output": "false"},
+         ladder=("R", [5], [4]), h=lambda R: 1.0 / float(R),
+         integrators=(["gear6"], ["gear6"]), order=None, metric=spool_metric,
+         reference="bending energy E_b R / YI of Purohit's inverse spool (d_s = 2.81 a), median "
+                   "relative deviation for 0.1 <= phi <= 0.3",
+         source="Purohit, Kondev & Phillips, PNAS 100 (2003) 3173; MODELS.md §5"),
+]
+CASE_IDS = [c["id"] for c in CASES]
+
+
+def run_one(slender, case, value, integ, dt, fast, timeout):
+    """Runs one deck; returns a row dict (status ok or an error)."""
+    ov = dict(case["fixed"])
+    if fast:
+        ov.update(case.get("fast_fixed", {}))
+    ov[case["ladder"][0]] = value
+    if integ != "none":
+        ov["integrator"] = integ
+    if dt is not None:
+        ov["dt"] = repr(dt)
+    cmd = [str(slender), str(EX / case["deck"]), "-q"]
+    for k, v in ov.items():
+        cmd += ["-v", "%s=%s" % (k, v)]
+    row = {"case": case["id"], "resolution": value, "integrator": integ,
+           "dt_mode": "auto" if dt is None else "set", "cmd": " ".join(shlex.quote(c) for c in cmd)}
+    with tempfile.TemporaryDirectory(prefix="slender_val_") as tmp:
+        t0 = time.monotonic()
+        try:
+            p = subprocess.run(cmd, cwd=tmp, capture_output=True, text=True, timeout=timeout)
+            rc, text = p.returncode, p.stdout + p.stderr
+        except subprocess.TimeoutExpired:
+            rc, text = -1, "timed out after %g s" % timeout
+        row["run_s"] = time.monotonic() - t0
+        results = wp.parse_result_lines(text)
+        if rc != 0 or not results:
+            row["status"] = "failed"
+            row["error"] = wp.last_line(text)
+            return row
+        r = results[-1]
+        row["status"] = "ok"
+        row["wall_s"] = wp.to_float(r.get("wall_s")) or row["run_s"]
+        row["dt"] = wp.to_float(r.get("dt"))
+        row["throughput"] = wp.to_float(r.get("node_steps_per_s"))
+        try:
+            if "metric" in case:
+                row["rel_error"], row["note"] = case["metric"](Path(tmp), r)
+            else:
+                row["rel_error"] = wp.to_float(r.get("rel_error"))
+        except Exception as e:  # a post-processing failure is a failed run, reported
+            row["status"] = "failed"
+            row["error"] = "post-processing: %s" % e
+    return row
+
+
+def orders(case, rows):
+    """Observed order between consecutive resolutions of one integrator's auto-dt runs."""
+    ok = [r for r in rows if r["status"] == "ok" and r["dt_mode"] == "auto" and r["rel_error"]]
+    ok.sort(key=lambda r: -case["h"](r["resolution"]))
+    out = []
+    for a, b in zip(ok, ok[1:]):
+        ha, hb = case["h"](a["resolution"]), case["h"](b["resolution"])
+        if a["rel_error"] > 0 and b["rel_error"] > 0 and ha != hb:
+            out.append(math.log(a["rel_error"] / b["rel_error"]) / math.log(ha / hb))
+    return out
+
+
+def plot(path, case, rows):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.2, 3.9))
+    for integ in sorted({r["integrator"] for r in rows}):
+        pts = sorted((r["wall_s"], r["rel_error"]) for r in rows
+                     if r["integrator"] == integ and r["status"] == "ok" and r["rel_error"])
+        if pts:
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=4,
+                      label=integ if integ != "none" else "energy evaluation")
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel("relative error")
+    ax.set_title(case["title"], fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def g(v, f="%.3g"):
+    return "" if v is None or v == "" else f % v
+
+
+def write_report(out, header, per_case, fast):
+    lines = ["# Validation: error against run time", ""]
+    lines += ["Generated by `scripts/validation_report.py%s`; do not edit by hand." %
+              (" --fast" if fast else ""), ""] + header + [""]
+    lines += ["Every case compares one observable with an analytic or published reference. "
+              "Wall time is the deck's own measurement of the physics (not start-up); "
+              "throughput is node-steps per second where the deck reports it. The observed "
+              "order is log(e_i / e_i+1) / log(h_i / h_i+1) between consecutive resolutions "
+              "(h: segment length, cell size or mesh edge).", ""]
+    lines += ["## Summary: the best error per case and what it cost", "",
+              "| family | case | best rel. error | at | wall s | observed order | expected |",
+              "|---|---|---|---|---|---|---|"]
+    for case, rows, ords in per_case:
+        ok = [r for r in rows if r["status"] == "ok" and r["rel_error"] is not None]
+        if not ok:
+            lines.append("| %s | %s | (failed) | | | | |" % (case["family"], case["title"]))
+            continue
+        best = min(ok, key=lambda r: (r["rel_error"], r["wall_s"]))
+        lines.append("| %s | %s | %.2e | %s = %s, %s | %.3g | %s | %s |" % (
+            case["family"], case["title"], best["rel_error"], case["ladder"][0],
+            best["resolution"], best["integrator"], best["wall_s"],
+            ", ".join("%.2f" % o for o in ords) or "-",
+            "%.1f" % case["order"] if case["order"] else "-"))
+    lines.append("")
+    for case, rows, ords in per_case:
+        lines += ["## %s" % case["title"], "",
+                  "- reference: %s" % case["reference"], "- source: %s" % case["source"],
+                  "- deck: `examples/%s`" % case["deck"],
+                  "- observed order: %s" % (", ".join("%.2f" % o for o in ords) or "-"), "",
+                  "| %s | integrator | dt | rel. error | wall s | node-steps/s | note |" % case["ladder"][0],
+                  "|---|---|---|---|---|---|---|"]
+        for r in rows:
+            if r["status"] != "ok":
+                lines.append("| %s | %s | | failed | | | %s |" % (
+                    r["resolution"], r["integrator"], wp.md_escape(r.get("error", ""))[:120]))
+                continue
+            lines.append("| %s | %s | %s%s | %s | %s | %s | %s |" % (
+                r["resolution"], r["integrator"], g(r.get("dt"), "%.3g"),
+                "" if r["dt_mode"] == "auto" else " (set)", g(r["rel_error"], "%.2e"),
+                g(r["wall_s"]), g(r.get("throughput"), "%.2e"), r.get("note", "")))
+        lines += ["", "![%s](validation/%s.png)" % (case["id"], case["id"]), ""]
+    (out / "validation.md").write_text("\n".join(lines) + "\n")
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--slender", default=str(REPO / "build" / "slender"))
+    p.add_argument("--out", default=str(REPO / "docs"), help="writes OUT/validation.md and OUT/validation/")
+    p.add_argument("--fast", action="store_true", help="small ladders; check the expected orders")
+    p.add_argument("--cases", nargs="+", choices=CASE_IDS, default=CASE_IDS)
+    p.add_argument("--timeout", type=float, default=3600.0, help="seconds per run")
+    args = p.parse_args(argv)
+    slender = Path(args.slender).resolve()
+    if not slender.is_file():
+        print("error: no slender at %s" % slender, file=sys.stderr)
+        return 2
+    out = Path(args.out)
+    (out / "validation").mkdir(parents=True, exist_ok=True)
+    started = datetime.datetime.now()
+    per_case, all_rows, problems = [], [], []
+    for case in CASES:
+        if case["id"] not in args.cases:
+            continue
+        values = case["ladder"][2 if args.fast else 1]
+        integs = case["integrators"][1 if args.fast else 0]
+        rows = []
+        for integ in integs:
+            for v in values:
+                r = run_one(slender, case, v, integ, None, args.fast, args.timeout)
+                rows.append(r)
+                print("%-20s %s=%-8s %-7s %s" % (case["id"], case["ladder"][0], v, integ,
+                      "rel_error %.3e  wall %.3g s" % (r["rel_error"], r["wall_s"])
+                      if r["status"] == "ok" else "FAILED: %s" % r.get("error")), flush=True)
+        # the time-step ladder: the finest resolution, dynamic integrators, dt = auto / 2, / 4
+        if case.get("dt_ladder") and not args.fast:
+            for integ in integs:
+                auto = [r for r in rows if r["integrator"] == integ and r["resolution"] == values[-1]
+                        and r["status"] == "ok" and r.get("dt")]
+                if integ == "fire" or not auto:
+                    continue
+                for f in (2, 4):
+                    r = run_one(slender, case, values[-1], integ, auto[0]["dt"] / f, False, args.timeout)
+                    rows.append(r)
+        ords = {}
+        for integ in integs:
+            ords[integ] = orders(case, [r for r in rows if r["integrator"] == integ])
+        main_ords = ords[integs[-1]]
+        if any(r["status"] != "ok" for r in rows):
+            problems.append("%s: %d failed runs" % (case["id"], sum(r["status"] != "ok" for r in rows)))
+        if args.fast and case["order"] and main_ords and main_ords[-1] < case["order"]:
+            problems.append("%s: observed order %.2f below the expected %.1f" %
+                            (case["id"], main_ords[-1], case["order"]))
+        if case["order"]:
+            print("%-20s observed order %s (expected >= %.1f)" % (
+                case["id"], ", ".join("%.2f" % o for o in main_ords), case["order"]), flush=True)
+        plot(out / "validation" / ("%s.png" % case["id"]), case, rows)
+        per_case.append((case, rows, main_ords))
+        all_rows += rows
+    elapsed = (datetime.datetime.now() - started).total_seconds()
+    header = ["- date: %s" % started.strftime("%Y-%m-%d %H:%M"),
+              "- git: `%s`" % (wp.git_describe() or "unknown"),
+              "- report time: %.0f s (one 2-core machine, one run per row; compare within a table)" % elapsed]
+    write_report(out, header, per_case, args.fast)
+    with open(out / "validation.csv", "w", newline="") as fh:
+        cols = ["case", "resolution", "integrator", "dt_mode", "dt", "rel_error", "wall_s",
+                "throughput", "status", "note", "error", "run_s", "cmd"]
+        w = csv.DictWriter(fh, fieldnames=cols, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(all_rows)
+    print("wrote %s" % (out / "validation.md"))
+    for m in problems:
+        print("problem: %s" % m)
+    print("validation: %d cases, %d problems" % (len(per_case), len(problems)))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -7,9 +7,13 @@
   shell_plots.py econe ECONE.csv OUT.png
       E_b_hat, E_s/E_b and the contact-plane angle gamma against phi_e, with the
       first self-contact marked
-  shell_plots.py sphere SHRINK.csv GROW.csv OUT.png
-      bending and stretching energy against the confinement f = D / R_s for the
-      shrinking sphere and for growth in a fixed sphere
+  shell_plots.py sphere SPHERE.csv [OTHER.csv] OUT.png
+      bending and stretching energy against the confinement f = D / R_s, for one
+      run or for the shrinking sphere and growth in a fixed sphere together
+  shell_plots.py branches BRANCHES.csv OUT.png
+      the S-2 stability run (econe_stability.lua): E_b_hat and gamma against phi_e
+      on the symmetric branch held by friction, the skewed branch, and the release
+      tests
 """
 import argparse
 import csv
@@ -91,16 +95,51 @@ def econe(args):
 
 
 def sphere(args):
-    a, b = read_csv(args.shrink), read_csv(args.grow)
+    *csvs, out = args.files
+    if not csvs:
+        sys.exit("sphere: give one or two CSV files and the output PNG")
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for d, label in ((a, "shrinking sphere (S-6)"), (b, "growth in a fixed sphere (S-7)")):
+    for path in csvs:
+        d = read_csv(path)
+        label = ("shrinking sphere (S-6)" if "shrink" in path else
+                 "growth in a fixed sphere (S-7)" if "grow" in path else path)
         axes[0].plot(d["f"], d["E_b"], "o-", label=label)
         axes[1].plot(d["f"], d["E_s"], "o-", label=label)
     axes[0].set_ylabel("bending energy")
     axes[1].set_ylabel("stretching energy")
     for ax in axes:
         ax.set_xlabel(r"confinement $f = D / R_s$")
-        ax.legend()
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    print(f"wrote {out}")
+
+
+def branches(args):
+    with open(args.csv) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        sys.exit(f"{args.csv}: no rows")
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    styles = {"symmetric": ("o-", "symmetric (static friction)"),
+              "released": ("*", "released at the top"),
+              "skewed": ("s-", "skewed (frictionless)"),
+              "release_test": ("x", "release tests")}
+    for branch, (style, label) in styles.items():
+        sel = [r for r in rows if r["branch"] == branch]
+        if not sel:
+            continue
+        phi = np.array([float(r["phi_e"]) for r in sel])
+        eb = np.array([float(r["Eb_hat"]) for r in sel])
+        gam = np.array([float(r["gamma"]) for r in sel])
+        axes[0].plot(phi, eb, style, ms=5, label=label)
+        ok = gam >= 0
+        axes[1].plot(phi[ok], np.degrees(gam[ok]), style, ms=5, label=label)
+    axes[0].set_ylabel(r"$\hat E_b$")
+    axes[1].set_ylabel(r"contact-plane angle $\gamma$ (deg)")
+    for ax in axes:
+        ax.set_xlabel(r"excess angle $\phi_e$")
+        ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(args.out, dpi=120)
     print(f"wrote {args.out}")
@@ -118,11 +157,12 @@ def main():
     e.add_argument("csv")
     e.add_argument("out")
     s = sub.add_parser("sphere")
-    s.add_argument("shrink")
-    s.add_argument("grow")
-    s.add_argument("out")
+    s.add_argument("files", nargs="+", help="one or two CSV files, then the output PNG")
+    b = sub.add_parser("branches")
+    b.add_argument("csv")
+    b.add_argument("out")
     args = p.parse_args()
-    {"render": render, "econe": econe, "sphere": sphere}[args.cmd](args)
+    {"render": render, "econe": econe, "sphere": sphere, "branches": branches}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 -- wings (the symmetric branch, contact planes at gamma = pi/2), friction is released at phi_top and the
 -- cone relaxes to the skewed branch, which is then followed back down to the kissing angle. The critical
 -- angle phi_crit, above which the symmetric cone does not survive the release, is bisected over the
--- checkpoints of the symmetric branch.
+-- checkpoints of the symmetric branch. Plots branches.png (E_b_hat and gamma of both branches) and
+-- released.png (the cone released at phi_top, coloured by U_b).
 -- Run time: -v fast=1 about 25 s; the default (h = 0.02, edge 1/16, phi_e to 10) about 1.5 h.
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_top=10 -v dphi=0.2 -v mu_static=2 -v out=DIR
 --          -v moved=0.02 (a released state has left the symmetric branch when its nodes moved by more
@@ -95,6 +96,9 @@ else
 end
 for _, u in ipairs(up) do os.remove(u.file) end
 scene.csv:close()
+local plots = require("lib.plots")
+plots.run("branches", out .. "/branches.csv", out .. "/branches.png")
+plots.run("render", out .. "/surface.h5", out .. "/released.png")
 
 -- -v check=1 (the test suite): friction held a symmetric cone at phi_top that the release moves away,
 -- while the cone at first contact stays where it is without friction

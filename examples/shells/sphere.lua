@@ -67,6 +67,9 @@ for k = 1, samples do
 end
 csv:close()
 sim:write_dump("surface")
+local plots = require("lib.plots")
+plots.run("sphere", out .. "/sphere.csv", out .. "/sphere.png")
+plots.run("render", out .. "/surface.h5", out .. "/shape.png")
 -- -v check=1 (the test suite): the sphere holds the disc and the confinement bends it more and more
 if slender.var("check", 0) == 1 then
   if sim:value("sphere.contacts") == 0 then error("sphere: the disc does not touch the container") end

@@ -38,7 +38,15 @@ def main():
             for t in range(3):
                 f.write(f"{t},{2 + t * 0.1},{0.1 * t},{0.2 * t},1,0,3,1,1e-4,0,1\n")
         run("sphere", s, s, os.path.join(d, "p.png"))
-        for png in ("s.png", "e.png", "p.png"):
+        run("sphere", s, os.path.join(d, "p1.png"))
+        b = os.path.join(d, "branches.csv")
+        with open(b, "w") as f:
+            f.write("branch,phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,steps,wall_s\n")
+            for br, phi, g in (("symmetric", 5, 1.5), ("symmetric", 6, 1.5), ("released", 6, 0.3),
+                               ("skewed", 5.5, 0.4), ("release_test", 5.5, -1)):
+                f.write(f"{br},{phi},1,2,{phi},3.1,2,0,0,4,4,{g},10,1\n")
+        run("branches", b, os.path.join(d, "b.png"))
+        for png in ("s.png", "e.png", "p.png", "p1.png", "b.png"):
             assert os.path.getsize(os.path.join(d, png)) > 1000, png
     print("shell scripts: ok")
 

@@ -6,15 +6,17 @@
 -- released.png (the cone released at phi_top, coloured by U_b).
 -- Run time: -v fast=1 about 25 s; the default (h = 0.02, edge 1/16, phi_e to 10) about 1.5 h.
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_top=10 -v dphi=0.2 -v mu_static=2 -v out=DIR
---          -v moved=0.02 (a released state has left the symmetric branch when its nodes moved by more
---          than this rms distance, in disc radii)
+--          -v gamma_drop=0.2 (a released cone has skewed when its contact-plane angle gamma fell by more
+--          than this from the held one; where gamma is undefined, one contact zone on a coarse mesh,
+--          when its nodes moved by more than -v moved=0.05 rms)
 local slender = require("slender")
 
 local fast = slender.var("fast", 0) == 1
 local phi_top = slender.var("phi_top", fast and 6.0 or 10.0)
 local dphi = slender.var("dphi", fast and 0.5 or 0.2)
 local mu = slender.var("mu_static", 2.0)
-local moved = slender.var("moved", 0.02)
+local gamma_drop = slender.var("gamma_drop", 0.2)
+local moved = slender.var("moved", 0.05)
 local scene = require("lib.econe").build{fast = fast, out = "econe_stability_out", mu_static = mu}
 local sim, relax, record, out = scene.sim, scene.relax, scene.record, scene.out
 scene.open_log("branches.csv", {"branch"})
@@ -78,8 +80,11 @@ local function skews(k)
   sim:modify("contact/shell", {mu_static = 0})
   local n = relax(up[k].phi)
   record(up[k].phi, n, {"release_test"})
-  local d = rms_from(x0)
-  print(string.format("release test at phi_e = %.3f: nodes moved by %.4f (rms)", up[k].phi, d))
+  local g, d = gamma(), rms_from(x0)
+  print(string.format("release test at phi_e = %.3f: gamma %.3f -> %.3f, nodes moved by %.4f (rms)",
+                      up[k].phi, up[k].gamma, g, d))
+  -- two contact zones before and after, and the angle between their planes fell
+  if up[k].gamma >= 0 and g >= 0 then return up[k].gamma - g > gamma_drop end
   return d > moved
 end
 local lo, hi = 0, #up  -- up[hi] skews (checked), up[lo] does not (0: below contact)
@@ -94,6 +99,14 @@ if skews(#up) then
 else
   print(string.format("the symmetric cone survives the release up to phi_top = %.3f", phi_top))
 end
+-- where the energies of the two branches cross: above it the skewed cone costs less bending
+local cross
+for _, d in ipairs(down) do  -- down runs from phi_top towards the kiss
+  for _, u in ipairs(up) do
+    if math.abs(u.phi - d.phi) < 1e-9 and u.Eb_hat < d.Eb_hat and not cross then cross = d.phi end
+  end
+end
+if cross then print(string.format("the symmetric branch costs less bending energy below phi_e = %.3f", cross)) end
 for _, u in ipairs(up) do os.remove(u.file) end
 scene.csv:close()
 local plots = require("lib.plots")
@@ -111,4 +124,5 @@ slender.result{h = scene.h, edge = scene.edge, mu_static = mu, phi_kiss_step = k
                Eb_hat_symmetric_top = up[#up].Eb_hat, Eb_hat_skewed_top = released_Eb,
                moved_on_release = released_moved,
                phi_crit_lo = crit and crit.lo or -1, phi_crit_hi = crit and crit.hi or -1,
+               phi_energy_cross = cross or -1,
                wall_s = slender.clock() - scene.t0}

@@ -217,6 +217,10 @@ def run_one(slender, case, value, integ, dt, fast, timeout):
         row["wall_s"] = wp.to_float(r.get("wall_s")) or row["run_s"]
         row["dt"] = wp.to_float(r.get("dt"))
         row["throughput"] = wp.to_float(r.get("node_steps_per_s"))
+        row["throughput_kind"] = "node"
+        if row["throughput"] is None and r.get("element_steps_per_s"):
+            row["throughput"] = wp.to_float(r.get("element_steps_per_s"))
+            row["throughput_kind"] = "element"
         try:
             if "metric" in case:
                 row["rel_error"], row["note"] = case["metric"](Path(tmp), r)
@@ -294,7 +298,8 @@ def write_report(out, header, per_case, fast):
                   "- reference: %s" % case["reference"], "- source: %s" % case["source"],
                   "- deck: `examples/%s`" % case["deck"],
                   "- observed order: %s" % (", ".join("%.2f" % o for o in ords) or "-"), "",
-                  "| %s | integrator | dt | rel. error | wall s | node-steps/s | note |" % case["ladder"][0],
+                  "| %s | integrator | dt | rel. error | wall s | %s-steps/s | note |" % (
+                      case["ladder"][0], "element" if case["family"] == "shell" else "node"),
                   "|---|---|---|---|---|---|---|"]
         for r in rows:
             if r["status"] != "ok":
@@ -306,7 +311,33 @@ def write_report(out, header, per_case, fast):
                 "" if r["dt_mode"] == "auto" else " (set)", g(r["rel_error"], "%.2e"),
                 g(r["wall_s"]), g(r.get("throughput"), "%.2e"), r.get("note", "")))
         lines += ["", "![%s](validation/%s.png)" % (case["id"], case["id"]), ""]
+    lines += holdings_section()
     (out / "validation.md").write_text("\n".join(lines) + "\n")
+
+
+def holdings_section():
+    """What each example scene holds, from the expectations the example suite checks
+    (tests/decks/inventory.json, compared with slender --inventory in examples.fast_suite)."""
+    import json
+    path = REPO / "tests" / "decks" / "inventory.json"
+    if not path.is_file():
+        return []
+    inv = json.loads(path.read_text())
+    lines = ["## What each example scene holds", "",
+             "A scene allocates only what its styles use. The example suite checks every deck "
+             "against this list (`slender --inventory`, test `examples.fast_suite`); node "
+             "properties beyond position, velocity, force and mass, extra coordinates, "
+             "neighbour structures and style families:", "",
+             "| deck | node properties | coordinates | neighbours | families |", "|---|---|---|---|---|"]
+    core = {"position", "velocity", "force", "mass"}
+    for deck in sorted(inv):
+        h = inv[deck]
+        props = [p for p in h["node_properties"] if p not in core]
+        fams = sorted({s.split()[0] for s in h["styles"]})
+        lines.append("| `%s` | %s | %s | %s | %s |" % (
+            deck, ", ".join(props) or "-", ", ".join(h["coordinates"]) or "-",
+            ", ".join(h["neighbor"]) or "none", ", ".join(fams)))
+    return lines + [""]
 
 
 def main(argv=None):

@@ -68,4 +68,5 @@ end
 slender.result{h = h, edge = edge, inner = inner, nodes = nodes, triangles = tris,
                phi_kiss = kiss or -1, phi_kiss_lo = kiss_lo or -1,
                phi_Ebmax = phi_ebmax, Eb_hat_max = ebmax, wings_before_contact = wings_before,
-               gamma_end = sim:value("contact/shell.gamma"), wall_s = wall}
+               gamma_end = sim:value("contact/shell.gamma"), wall_s = wall,
+               element_steps_per_s = tris * scene.steps_total / math.max(wall, 1e-9)}

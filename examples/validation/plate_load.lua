@@ -51,4 +51,5 @@ if check > 0 and not (err < check) then
   error(string.format("plate error %.3e above the check %.3e", err, check))
 end
 slender.result { case = "plate_load", support = support, n = n, nodes = nodes, triangles = tris,
-                 w = w, w_ref = w_ref, error = err, rel_error = err, steps = steps, wall_s = wall }
+                 w = w, w_ref = w_ref, error = err, rel_error = err, steps = steps, wall_s = wall,
+                 element_steps_per_s = tris * steps / math.max(wall, 1e-9) }

@@ -61,9 +61,12 @@ function M.build(opts)
   local t0 = slender.clock()
   s.t0 = t0
   -- grow to phi_e and relax to equilibrium; returns the FIRE steps
+  s.steps_total = 0  -- FIRE steps of all relaxations, for element-steps/s
   function s.relax(phi)
     sim:modify("g", {phi_e = phi})
-    return sim:minimize{ftol = s.ftol, max_steps = s.max_steps}
+    local n = sim:minimize{ftol = s.ftol, max_steps = s.max_steps}
+    s.steps_total = s.steps_total + n
+    return n
   end
   -- a CSV log of equilibrium states; extra columns (e.g. the branch) go first
   function s.open_log(name, extra)

@@ -2,7 +2,8 @@
 -- cylinder of radius rho stores the bending energy D kappa^2 A / 2 (kappa = 1/rho, D = Y h^3 / (12 (1 - nu^2)),
 -- A = L W; Timoshenko & Woinowsky-Krieger, "Theory of Plates and Shells", §2, pure bending into a cylinder).
 -- The shell's energy is evaluated on the wrapped control net (free ghosts wrapped with it), no relaxation.
--- Expected run time: under a second at n = 32 (cells along the strip).
+-- Expected run time: under a second at n = 32 (cells along the strip); the defaults are the fast mode
+-- (-v fast=1 changes nothing).
 --   slender cylinder_bend.lua -v n=16
 local slender = require("slender")
 local n = slender.var("n", 16)

@@ -6,6 +6,7 @@
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_max=12 -v dphi=0.1 -v out=DIR -v boundary=mirror|combined
 --          -v inner=0.25 grows a ring (annulus R_i <= r <= 1, both edges free; S-4) instead of a disc
 --          -v mode=3 -v mode_amp=1e-3 starts from z = amp r^2 cos(3 phi) (the n = 3 e-cone of S-5)
+--          -v contact=0 leaves self-contact out (the self-intersecting branch S-2 compares with)
 local slender = require("slender")
 
 local fast = slender.var("fast", 0) == 1
@@ -27,15 +28,15 @@ while phi < phi_max - 1e-12 do
   sim:write_checkpoint(ckpt)
   phi = math.min(phi_max, phi + dphi)
   local steps = relax(phi)
-  if not kiss and sim:value("contact/shell.far_contacts") == 0 then wings_before = sim:value("rim.n") end
-  if not kiss and sim:value("contact/shell.far_contacts") > 0 then
+  if not kiss and scene.cv("far_contacts") == 0 then wings_before = sim:value("rim.n") end
+  if not kiss and scene.cv("far_contacts") > 0 then
     -- first contact in (prev_phi, phi]: bisect from the last contact-free state
     local lo, hi = prev_phi, phi
     for _ = 1, kiss_bisections do
       local mid = 0.5 * (lo + hi)
       sim:read_checkpoint(ckpt)
       relax(mid)
-      if sim:value("contact/shell.far_contacts") > 0 then
+      if scene.cv("far_contacts") > 0 then
         hi = mid
       else
         lo = mid
@@ -68,5 +69,5 @@ end
 slender.result{h = h, edge = edge, inner = inner, nodes = nodes, triangles = tris,
                phi_kiss = kiss or -1, phi_kiss_lo = kiss_lo or -1,
                phi_Ebmax = phi_ebmax, Eb_hat_max = ebmax, wings_before_contact = wings_before,
-               gamma_end = sim:value("contact/shell.gamma"), wall_s = wall,
+               gamma_end = scene.cv("gamma"), wall_s = wall,
                element_steps_per_s = tris * scene.steps_total / math.max(wall, 1e-9)}

@@ -46,15 +46,25 @@ function M.build(opts)
   -- wings): the sharp apex of a thick cone touches itself across the tip long before.
   -- dense = "all" sums the forces of every feature pair within h: relaxations after contact
   -- converge (with the closest pair only, FIRE stalls where the closest feature switches)
-  sim:pair("contact/shell", {mesh = "disc", thickness = s.h, young = s.young,
-                             near_distance = slender.var("near_distance", 4 * s.h),
-                             far_distance = slender.var("far_distance", 0.25),
-                             dense = slender.var("dense", "all"),
-                             mu_static = opts.mu_static or 0})
+  -- -v contact=0: no self-contact (the self-intersecting companion branch of S-2)
+  s.contact = slender.var("contact", 1) == 1
+  if s.contact then
+    sim:pair("contact/shell", {mesh = "disc", thickness = s.h, young = s.young,
+                               near_distance = slender.var("near_distance", 4 * s.h),
+                               far_distance = slender.var("far_distance", 0.25),
+                               dense = slender.var("dense", "all"),
+                               mu_static = opts.mu_static or 0})
+  end
+  -- contact observables, also without contact (0 contacts, gamma -1)
+  function s.cv(key)
+    if s.contact then return sim:value("contact/shell." .. key) end
+    return key == "gamma" and -1 or 0
+  end
   sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + s.inner)})
   sim:integrator("fire", {})
   sim:dump("surface", "shell", {file = s.out .. "/surface.h5", every = 1000000000, mesh = "disc",
-                                faces = {"koiter.Ub", "koiter.Us", "contact/shell.contact"}})
+                                faces = s.contact and {"koiter.Ub", "koiter.Us", "contact/shell.contact"}
+                                        or {"koiter.Ub", "koiter.Us"}})
   print(string.format("e-cone: h = %g, %d nodes, %d triangles, ftol = %.3g", s.h, s.nodes, s.tris,
                       s.ftol))
 
@@ -83,8 +93,8 @@ function M.build(opts)
     for _, v in ipairs(extra_values or {}) do row[#row + 1] = tostring(v) end
     for _, v in ipairs{phi, sim:value("koiter.stretch"), sim:value("koiter.bend"),
                        sim:value("koiter.Eb_hat"), sim:value("koiter.area"), sim:value("rim.n"),
-                       sim:value("rim.a2"), sim:value("rim.a3"), sim:value("contact/shell.contacts"),
-                       sim:value("contact/shell.far_contacts"), sim:value("contact/shell.gamma"),
+                       sim:value("rim.a2"), sim:value("rim.a3"), s.cv("contacts"),
+                       s.cv("far_contacts"), s.cv("gamma"),
                        steps, slender.clock() - t0} do
       row[#row + 1] = string.format("%.8g", v)
     end
@@ -94,7 +104,7 @@ function M.build(opts)
                         extra_values and (table.concat(extra_values, " ") .. "  ") or "", phi,
                         sim:value("koiter.Eb_hat"),
                         sim:value("koiter.stretch") / sim:value("koiter.bend"), sim:value("rim.n"),
-                        sim:value("contact/shell.contacts"), sim:value("contact/shell.gamma"), steps))
+                        s.cv("contacts"), s.cv("gamma"), steps))
   end
   return s
 end

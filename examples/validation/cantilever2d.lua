@@ -42,7 +42,7 @@ elseif model == "cosserat" then
   -- (alpha = 3, 41 nodes: 8.9e-4 at C = EA, 1.4e-4 at 10 EA; dt and cost go as sqrt(C))
   local C = slender.var("coupling_factor", 1) * EA
   local Ir = 1e-3 * h * h
-  local kq = 4 * C * h
+  local kq = 4 * EA * h  -- the frame's damping stays tuned to C = EA (tuned to C it stalls)
   sim:bond("rod/cosserat", { YI = EI, GJ = EI / 1.33, coupling = C, rot_inertia = Ir,
                              rot_damping = 2 * math.sqrt(kq * 4 * Ir * h) })
 else

@@ -83,6 +83,10 @@ def draw(rows, out):
             summary.append((setup, A, p))
     ax.set_xscale("log")
     ax.set_yscale("log")
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
+    for axis in (ax.xaxis, ax.yaxis):  # plain numbers, no crowded minor labels
+        axis.set_major_formatter(ScalarFormatter())
+        axis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("a / R")
     ax.set_ylabel("phi_max")
     ax.legend(fontsize=8)

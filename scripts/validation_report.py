@@ -418,6 +418,9 @@ def main(argv=None):
     header = ["- date: %s" % started.strftime("%Y-%m-%d %H:%M"),
               "- git: `%s`" % (wp.git_describe() or "unknown"),
               "- report time: %.0f s (one 2-core machine, one run per row; compare within a table)" % elapsed]
+    if kept:
+        header.append("- rows of the cases not rerun kept from the previous report (--keep): %s" %
+                      ", ".join(c for c in kept if c not in args.cases))
     write_report(out, header, per_case, args.fast)
     with open(out / "validation.csv", "w", newline="") as fh:
         cols = ["case", "resolution", "integrator", "dt_mode", "dt", "rel_error", "wall_s",

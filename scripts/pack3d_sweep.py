@@ -83,10 +83,16 @@ def draw(rows, out):
             summary.append((setup, A, p))
     ax.set_xscale("log")
     ax.set_yscale("log")
-    from matplotlib.ticker import NullFormatter, ScalarFormatter
-    for axis in (ax.xaxis, ax.yaxis):  # plain numbers, no crowded minor labels
-        axis.set_major_formatter(ScalarFormatter())
-        axis.set_minor_formatter(NullFormatter())
+    # plain numbers at the radii run and at round densities (a log axis spanning less
+    # than a decade has no major ticks of its own)
+    from matplotlib.ticker import FixedLocator, NullFormatter, NullLocator
+    Rs_all = sorted({float(r["R"]) for r in rows if r["status"] == "ok"})
+    ax.xaxis.set_major_locator(FixedLocator([1.0 / R for R in Rs_all]))
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"1/{1 / v:.0f}"))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.yaxis.set_major_locator(FixedLocator([k / 10 for k in range(1, 11)]))
+    ax.yaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:.1f}"))
+    ax.yaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("a / R")
     ax.set_ylabel("phi_max")
     ax.legend(fontsize=8)

@@ -30,27 +30,39 @@ struct Outcome {
   long steps = 0;
 };
 
-// Runs `steps` steps in chunks, tracking the total energy; a guard stop is an outcome,
-// any other exception a failure of the test.
-Outcome run_case(Simulation& sim, long steps, long chunk = 100) {
+// One run whose guard stop is an outcome (any other exception fails the test); the
+// scene must hold no NaN afterwards either way.
+Outcome guarded_run(Simulation& sim, const RunOptions& ro) {
   Outcome o;
   sim.guard.last_good_file = "stress_last_good.h5";
-  sim.compute_forces();
-  o.e0 = o.e_max = sim.kinetic_energy() + sim.potential_energy();
   try {
-    for (long done = 0; done < steps; done += chunk) {
-      sim.run(RunOptions{std::min(chunk, steps - done), 0, {}});
-      const double e = sim.kinetic_energy() + sim.potential_energy();
-      o.e_max = std::max(o.e_max, e);
-      o.e_end = e;
-    }
+    sim.run(ro);
     o.stable = true;
   } catch (const InstabilityError& e) {
     o.message = e.what();
   }
-  o.steps = sim.step;
-  for (auto& x : sim.nodes().x) EXPECT_TRUE(x.allFinite()) << "NaN left in the scene";
   std::remove("stress_last_good.h5");
+  for (auto& x : sim.nodes().x) EXPECT_TRUE(x.allFinite()) << "NaN left in the scene";
+  o.steps = sim.step;
+  return o;
+}
+
+// Runs `steps` steps in chunks, tracking the total energy; a guard stop is an outcome,
+// any other exception a failure of the test.
+Outcome run_case(Simulation& sim, long steps, long chunk = 100) {
+  sim.compute_forces();
+  const double e0 = sim.kinetic_energy() + sim.potential_energy();
+  double e_max = e0, e_end = e0;
+  Outcome o = guarded_run(sim, RunOptions{steps, chunk, [&](Simulation& s) {
+                                            const double e =
+                                                s.kinetic_energy() + s.potential_energy();
+                                            e_max = std::max(e_max, e);
+                                            e_end = e;
+                                            return false;
+                                          }});
+  o.e0 = e0;
+  o.e_max = e_max;
+  o.e_end = e_end;
   return o;
 }
 
@@ -213,16 +225,7 @@ TEST(StressCases, NodesDrivenIntoAWall) {
                     }
                     return false;
                   }};
-    sim.guard.last_good_file = "stress_last_good.h5";
-    o = Outcome{};
-    try {
-      sim.run(ro);
-      o.stable = true;
-    } catch (const InstabilityError& e) {
-      o.message = e.what();
-    }
-    std::remove("stress_last_good.h5");
-    for (auto& x : sim.nodes().x) EXPECT_TRUE(x.allFinite());
+    o = guarded_run(sim, ro);
     return sim.dt;
   };
   for (double speed : {1.0, 10.0, 100.0, 1000.0}) {
@@ -357,16 +360,7 @@ TEST(StressCases, CrossingAndNearParallelRods) {
                       gap = std::min(gap, s.nodes().x[13].z() - s.nodes().x[4].z());
                       return false;
                     }};
-      Outcome o;
-      sim.guard.last_good_file = "stress_last_good.h5";
-      try {
-        sim.run(ro);
-        o.stable = true;
-      } catch (const InstabilityError& e) {
-        o.message = e.what();
-      }
-      std::remove("stress_last_good.h5");
-      for (auto& x : sim.nodes().x) EXPECT_TRUE(x.allFinite());
+      const Outcome o = guarded_run(sim, ro);
       report("contact/segment",
              fmt("rods at %.2g rad approaching at speed %g (dt %.3g)", angle, speed, sim.dt), o,
              o.stable ? fmt("closest centre lines %.3g (2a = 1)", gap) : o.message.substr(0, 200));

@@ -1,4 +1,5 @@
-// Self-contact of a shell surface (MODELS.md §6.10, (5.36)), frictionless.
+// Self-contact of a shell surface (MODELS.md §6.10, (5.36)), frictionless unless
+// mu_static > 0 (then stick-slip friction per triangle pair, §2.3).
 //
 // Broad phase: triangle AABBs (current control mesh, inflated by (h + skin)/2) in
 // cubic voxels of edge max(largest AABB, h), so a box spans at most 2 voxels per
@@ -143,6 +144,8 @@ class ShellContactPair : public PairStyle {
   double max_frequency(const Simulation&) const override {
     const double r = 0.8 * h_;
     double kr = k_ * (2 * (h_ - r) / (r * r) + 2 * (h_ - r) * (h_ - r) / (r * r * r));
+    // the stick spring of a pair carrying the normal force at that overlap
+    if (friction_.frictional()) kr += friction_.stick_stiffness * (h_ - r) * (h_ - r) / (r * r);
     // dense = all: a node above a vertex of the other sheet meets up to six triangles
     if (dense_all_) kr *= 6;
     return std::sqrt(kr / m_min_);
@@ -253,7 +256,6 @@ class ShellContactPair : public PairStyle {
         ContactLaw law = friction_;
         law.stick_stiffness *= normal / k_;
         const Vec3 ft = law.friction(normal, normal_sum / normal, vrel, sim.dt, c.friction);
-
         for (int k = 0; k < 3; ++k) {
           f[base_ + T[c.t1][k]] += w1[k] * ft;
           f[base_ + T[c.t2][k]] -= w2[k] * ft;

@@ -4,7 +4,7 @@
 -- angle phi_crit, above which the symmetric cone does not survive the release, is bisected over the
 -- checkpoints of the symmetric branch. Plots branches.png (E_b_hat and gamma of both branches) and
 -- released.png (the cone released at phi_top, coloured by U_b).
--- Run time: -v fast=1 about 25 s; the default (h = 0.02, edge 1/16, phi_e to 10) about 1.5 h.
+-- Run time: -v fast=1 about 25 s; the default (h = 0.02, edge 1/16, phi_e to 10) about 40 min.
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_top=10 -v dphi=0.2 -v mu_static=2 -v out=DIR
 --          -v gamma_drop=0.2 (a released cone has skewed when its contact-plane angle gamma fell by more
 --          than this from the held one; where gamma is undefined, one contact zone on a coarse mesh,

@@ -25,6 +25,27 @@ shell::TriMesh two_plates(double gap, int n) {
   for (auto t : b.tri) a.tri.push_back({t[0] + off, t[1] + off, t[2] + off});
   return a;
 }
+// A plate resting on a clamped one at `gap`, with the Koiter shell and the contact pair
+// (`contact` adds to mesh and thickness); the top plate's nodes go to group "top".
+std::unique_ptr<Simulation> plate_on_plate(int n, double gap, RawParams contact) {
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  const double h = 0.02;
+  shell::add_surface(*sim, "s", two_plates(1.0, n), 0.0);
+  std::vector<int> top, bottom;
+  for (int i : sim->group("s")) (sim->nodes().x[i].z() > 0.5 ? top : bottom).push_back(i);
+  for (int i : top) sim->nodes().x[i].z() = gap;
+  sim->add_shell(
+      "koiter",
+      P({{"mesh", std::string("s")}, {"thickness", h}, {"boundary", std::string("mirror")}}));
+  contact["mesh"] = std::string("s");
+  contact["thickness"] = h;
+  sim->add_pair("contact/shell", contact);
+  sim->set_group("top", top);
+  sim->set_group("bottom", bottom);
+  sim->add_fix("hold", "clamp", P({{"group", std::string("bottom")}}));
+  return sim;
+}
 }  // namespace
 
 TEST(ShellContact, TriangleDistance) {
@@ -168,24 +189,10 @@ TEST(ShellContact, PressedShellsNeverInterpenetrate) {
 // acts once per triangle pair on the sum of its normal forces.
 TEST(ShellContact, StaticFrictionHoldsBelowMuTimesTheLoad) {
   auto slide = [](double ratio, const std::string& dense, double mu) {
-    auto sim = std::make_unique<Simulation>(3, 1);
-    sim->verbose = false;
-    const double h = 0.02;
-    shell::add_surface(*sim, "s", two_plates(1.0, 4), 0.0);
-    std::vector<int> top, bottom;
-    for (int i : sim->group("s")) (sim->nodes().x[i].z() > 0.5 ? top : bottom).push_back(i);
-    for (int i : top) sim->nodes().x[i].z() = 0.95 * h;  // just touching the bottom plate
-    sim->add_shell(
-        "koiter",
-        P({{"mesh", std::string("s")}, {"thickness", h}, {"boundary", std::string("mirror")}}));
-    sim->add_pair("contact/shell", P({{"mesh", std::string("s")},
-                                      {"thickness", h},
-                                      {"mu_static", mu},
-                                      {"mu_dynamic", 0.9 * mu},
-                                      {"dense", dense}}));
-    sim->set_group("top", top);
-    sim->set_group("bottom", bottom);
-    sim->add_fix("hold", "clamp", P({{"group", std::string("bottom")}}));
+    const double h = 0.02;  // the top plate just touches the bottom one
+    auto sim = plate_on_plate(4, 0.95 * h,
+                              P({{"mu_static", mu}, {"mu_dynamic", 0.9 * mu}, {"dense", dense}}));
+    const std::vector<int> top = sim->group("top");
     const double fz = -0.5;
     sim->add_fix(
         "push", "force/constant",
@@ -222,22 +229,7 @@ TEST(ShellContact, StaticFrictionHoldsBelowMuTimesTheLoad) {
 // bit-identically.
 TEST(ShellContact, FrictionHistoryRestartsBitIdentically) {
   for (std::string dense : {"closest", "all"}) {
-    auto sim = std::make_unique<Simulation>(3, 1);
-    sim->verbose = false;
-    const double h = 0.02;
-    shell::add_surface(*sim, "s", two_plates(1.0, 3), 0.0);
-    std::vector<int> top, bottom;
-    for (int i : sim->group("s")) (sim->nodes().x[i].z() > 0.5 ? top : bottom).push_back(i);
-    for (int i : top) sim->nodes().x[i].z() = 0.8 * h;
-    sim->add_shell(
-        "koiter",
-        P({{"mesh", std::string("s")}, {"thickness", h}, {"boundary", std::string("mirror")}}));
-    sim->add_pair(
-        "contact/shell",
-        P({{"mesh", std::string("s")}, {"thickness", h}, {"mu_static", 0.5}, {"dense", dense}}));
-    sim->set_group("top", top);
-    sim->set_group("bottom", bottom);
-    sim->add_fix("hold", "clamp", P({{"group", std::string("bottom")}}));
+    auto sim = plate_on_plate(3, 0.8 * 0.02, P({{"mu_static", 0.5}, {"dense", dense}}));
     sim->add_fix("push", "force/constant",
                  P({{"group", std::string("top")}, {"force", std::vector<double>{0.1, 0, -0.5}}}));
     sim->set_integrator("verlet", P({{"dt", 1e-4}}));

@@ -61,6 +61,16 @@ function M.build(opts)
     return key == "gamma" and -1 or 0
   end
   sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + s.inner)})
+  -- core radius R_C (MODELS.md §6.11 [C]): the bending energy inside r grows as A ln(r / R_C)
+  -- on the developable range 0.3 <= r <= 0.6 (R_C), and where the ring-averaged U_s falls
+  -- below 10 % of its peak (R_C_s; shrinks with every refinement of the apex); rings: -1
+  if s.inner == 0 then
+    sim:compute("core", "core_radius", {mesh = "disc"})
+    sim:compute("core_s", "core_radius", {mesh = "disc", criterion = "stretching"})
+  end
+  function s.core_radius(id)
+    return s.inner == 0 and sim:value((id or "core") .. ".radius") or -1
+  end
   sim:integrator("fire", {})
   sim:dump("surface", "shell", {file = s.out .. "/surface.h5", every = 1000000000, mesh = "disc",
                                 faces = s.contact and {"koiter.Ub", "koiter.Us", "contact/shell.contact"}
@@ -85,7 +95,7 @@ function M.build(opts)
     local head = {}
     for _, k in ipairs(s.extra) do head[#head + 1] = k end
     csv:write(table.concat(head, ",") .. (#head > 0 and "," or "") ..
-              "phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,steps,wall_s\n")
+              "phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,R_C,R_C_s,steps,wall_s\n")
     s.csv = csv
   end
   function s.record(phi, steps, extra_values)
@@ -94,17 +104,18 @@ function M.build(opts)
     for _, v in ipairs{phi, sim:value("koiter.stretch"), sim:value("koiter.bend"),
                        sim:value("koiter.Eb_hat"), sim:value("koiter.area"), sim:value("rim.n"),
                        sim:value("rim.a2"), sim:value("rim.a3"), s.cv("contacts"),
-                       s.cv("far_contacts"), s.cv("gamma"),
-                       steps, slender.clock() - t0} do
+                       s.cv("far_contacts"), s.cv("gamma"), s.core_radius(),
+                       s.core_radius("core_s"), steps, slender.clock() - t0} do
       row[#row + 1] = string.format("%.8g", v)
     end
     s.csv:write(table.concat(row, ",") .. "\n")
     s.csv:flush()
-    print(string.format("%sphi_e %.4f  Eb_hat %.4f  E_s/E_b %.3f  wings %d  contacts %d  gamma %.3f  steps %d",
+    print(string.format("%sphi_e %.4f  Eb_hat %.4f  E_s/E_b %.3f  wings %d  contacts %d  gamma %.3f  R_C %.4f  R_C_s %.4f  steps %d",
                         extra_values and (table.concat(extra_values, " ") .. "  ") or "", phi,
                         sim:value("koiter.Eb_hat"),
                         sim:value("koiter.stretch") / sim:value("koiter.bend"), sim:value("rim.n"),
-                        s.cv("contacts"), s.cv("gamma"), steps))
+                        s.cv("contacts"), s.cv("gamma"), s.core_radius(),
+                        s.core_radius("core_s"), steps))
   end
   return s
 end

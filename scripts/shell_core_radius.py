@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Core radius R_C of the e-cone against the thickness h (MODELS.md §6.11, §7.2 S-1):
+runs examples/shells/econe.lua without self-contact up to phi_e (default 3, below the
+first contact of every h) on a disc of outer edge 1/8 whose core is refined `level`
+times (refine_center = 0.3), for each h and level, and writes <out>.csv (one row per
+run, appended at once, so an interrupted study resumes) and <out>.png: R_C(h) per
+level with a power-law fit on the finest level, and R_C against the core edge (mesh
+convergence). R_C is the energy criterion of compute core_radius; R_C_s (U_s below 10 %
+of its peak) is logged next to it.
+
+  /usr/bin/python3 scripts/shell_core_radius.py --h 0.04 0.02 0.01 0.005 --levels 2 3 4 5
+"""
+import argparse
+import csv
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+FIELDS = ["h", "level", "core_edge", "phi_e", "R_C", "R_C_s", "Eb_hat", "E_s_over_E_b",
+          "triangles", "fire_steps", "wall_s", "status", "error"]
+
+
+def run_one(a, h, level):
+    row = {"h": h, "level": level, "core_edge": 0.125 / 2 ** level, "phi_e": a.phi}
+    with tempfile.TemporaryDirectory() as tmp:
+        args = [a.slender, "-q", os.path.join(a.examples, "shells", "econe.lua"), "-v", "fast=1",
+                "-v", f"h={h}", "-v", f"phi_max={a.phi}", "-v", "contact=0", "-v", "plots=0",
+                "-v", "refine_center=0.3", "-v", f"refine_levels={level}", "-v", f"out={tmp}/o"]
+        p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
+        res = {}
+        for line in p.stdout.splitlines():
+            if line.startswith("RESULT"):
+                res = dict(kv.partition("=")[::2] for kv in line.split()[1:])
+        log = os.path.join(tmp, "o", "econe.csv")
+        if p.returncode != 0 or not res or not os.path.exists(log):
+            row["status"] = "failed"
+            row["error"] = (p.stderr.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+            return row
+        with open(log) as fh:
+            last = list(csv.DictReader(fh))[-1]
+        steps = sum(int(float(r["steps"])) for r in csv.DictReader(open(log)))
+    row.update({"R_C": last["R_C"], "R_C_s": last["R_C_s"], "Eb_hat": last["Eb_hat"],
+                "E_s_over_E_b": float(last["E_s"]) / float(last["E_b"]),
+                "triangles": res["triangles"], "fire_steps": steps, "wall_s": res["wall_s"],
+                "status": "ok"})
+    return row
+
+
+def plot(rows, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    ok = [r for r in rows if r["status"] == "ok"]
+    if not ok:
+        return
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    levels = sorted({int(r["level"]) for r in ok})
+    fit = None
+    for lv in levels:
+        rs = sorted((float(r["h"]), float(r["R_C"])) for r in ok if int(r["level"]) == lv)
+        hs, rc = np.array(rs).T
+        ax[0].loglog(hs, rc, "o-", label=f"core edge 1/{int(8 * 2 ** lv)}")
+        if lv == levels[-1] and len(hs) >= 2:
+            p, c = np.polyfit(np.log(hs), np.log(rc), 1)
+            fit = (np.exp(c), p)
+            hh = np.geomspace(hs.min(), hs.max(), 20)
+            ax[0].loglog(hh, fit[0] * hh ** p, "k--", label=f"R_C = {fit[0]:.3g} h^{p:.2f}")
+    ax[0].set_xlabel("h / R")
+    ax[0].set_ylabel("R_C / R")
+    ax[0].legend(fontsize=8)
+    for hv in sorted({float(r["h"]) for r in ok}):
+        rs = sorted((float(r["core_edge"]), float(r["R_C"])) for r in ok if float(r["h"]) == hv)
+        e, rc = np.array(rs).T
+        ax[1].semilogx(e, rc, "o-", label=f"h = {hv:g}")
+    ax[1].set_xlabel("core edge / R")
+    ax[1].set_ylabel("R_C / R")
+    ax[1].legend(fontsize=8)
+    fig.suptitle(f"e-cone core radius at phi_e = {ok[0]['phi_e']} (energy criterion)")
+    fig.tight_layout()
+    fig.savefig(out + ".png", dpi=110)
+    if fit:
+        print(f"finest level: R_C = {fit[0]:.4g} h^{fit[1]:.3f}")
+    print(f"wrote {out}.png")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
+    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
+    ap.add_argument("--h", type=float, nargs="+", default=[0.04, 0.02, 0.01, 0.005])
+    ap.add_argument("--levels", type=int, nargs="+", default=[2, 3, 4, 5])
+    ap.add_argument("--phi", type=float, default=3.0)
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "shells", "core_radius"))
+    a = ap.parse_args()
+    path = a.out + ".csv"
+    rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
+    done = {(float(r["h"]), int(r["level"])) for r in rows if r["status"] == "ok"}
+    if not os.path.exists(path):
+        with open(path, "w") as fh:
+            csv.DictWriter(fh, FIELDS).writeheader()
+    for lv in sorted(a.levels):
+        for h in a.h:
+            if (h, lv) in done:
+                continue
+            row = run_one(a, h, lv)
+            with open(path, "a") as fh:
+                csv.DictWriter(fh, FIELDS).writerow(row)
+            rows.append({k: str(v) for k, v in row.items()})
+            print(f"h {h} level {lv}: {row['status']} R_C {row.get('R_C')} wall {row.get('wall_s')} s",
+                  flush=True)
+    plot(rows, a.out)
+
+
+if __name__ == "__main__":
+    main()

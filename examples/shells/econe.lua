@@ -65,9 +65,12 @@ if slender.var("check", 0) == 1 then
   if not kiss then error("e-cone: no self-contact up to phi_e = " .. phi_max) end
   if wings_before ~= 2 then error("e-cone: " .. wings_before .. " wings before contact, expected 2") end
   if not (phi_ebmax > 0 and phi_ebmax < kiss) then error("e-cone: no E_b_hat maximum before contact") end
+  -- the bending energy grows as A ln(r / R_C) outside a core smaller than the disc
+  local rc = scene.core_radius()
+  if not (rc > 0 and rc < 0.3) then error("e-cone: core radius " .. rc .. " outside (0, 0.3)") end
 end
 slender.result{h = h, edge = edge, inner = inner, nodes = nodes, triangles = tris,
                phi_kiss = kiss or -1, phi_kiss_lo = kiss_lo or -1,
                phi_Ebmax = phi_ebmax, Eb_hat_max = ebmax, wings_before_contact = wings_before,
-               gamma_end = scene.cv("gamma"), wall_s = wall,
+               gamma_end = scene.cv("gamma"), R_C_end = scene.core_radius(), wall_s = wall,
                element_steps_per_s = tris * scene.steps_total / math.max(wall, 1e-9)}

@@ -11,6 +11,7 @@
 #include "cell_grid.hpp"
 #include "chain_select.hpp"
 #include "contact_law.hpp"
+#include "pair_history.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -58,6 +59,11 @@ class NodeEdgeContactPair : public PairStyle {
       for (int e = 0; e < ch.n_edges(); ++e)
         edges_.push_back(Edge{ch.edge_tail(e), ch.edge_head(e), static_cast<int>(c), e});
     }
+    // a list read from a checkpoint knows its edges by number, in the numbering of now
+    if (tails_from_ids_)
+      for (auto& e : list_)
+        if (static_cast<size_t>(e.edge) < edges_.size()) e.tail = edges_[e.edge].a;
+    tails_from_ids_ = false;
     need_build_ = true;
   }
 
@@ -162,6 +168,7 @@ class NodeEdgeContactPair : public PairStyle {
       e.side = static_cast<int>(h[k + 6]);
       list_.push_back(e);
     }
+    tails_from_ids_ = true;
     schedule_.load(st);
   }
 
@@ -171,6 +178,7 @@ class NodeEdgeContactPair : public PairStyle {
   };
   struct Entry {
     int node = 0, edge = 0;
+    int tail = 0;  // the edge's first node: edge numbers change when a chain grows
     FrictionState st;
     bool prev = false;
     int side = 0;  // +1 / -1: side of the edge the contact was made from; 0: none
@@ -226,23 +234,21 @@ class NodeEdgeContactPair : public PairStyle {
           Entry en;
           en.node = node;
           en.edge = eid;
+          en.tail = e.a;
           list_.push_back(en);
         }
       });
       std::sort(list_.begin() + static_cast<long>(first), list_.end(),
                 [](const Entry& a, const Entry& b) { return a.edge < b.edge; });
     }
-    // carry the friction history of pairs that stay listed (both lists are sorted)
-    size_t j = 0;
-    for (auto& e : list_) {
-      while (j < old_.size() &&
-             (old_[j].node < e.node || (old_[j].node == e.node && old_[j].edge < e.edge)))
-        ++j;
-      if (j < old_.size() && old_[j].node == e.node && old_[j].edge == e.edge) {
-        e.st = old_[j].st;
-        e.side = old_[j].side;
-      }
-    }
+    // carry the history of pairs that stay listed, matched by (node, edge tail node)
+    carry_pair_history(
+        old_, list_, [](const Entry& e) { return node_pair_key(e.node, e.tail); },
+        [](const Entry& e) { return e.st.active || e.st.stick || e.side != 0; },
+        [](const Entry& from, Entry& to) {
+          to.st = from.st;
+          to.side = from.side;
+        });
     schedule_.built(sim);
     need_build_ = false;
   }
@@ -264,6 +270,7 @@ class NodeEdgeContactPair : public PairStyle {
     c.st.active = true;
   }
 
+  bool tails_from_ids_ = false;
   double d_;
   ContactLaw law_;
   RebuildSchedule schedule_;

@@ -12,6 +12,7 @@
 #include "cell_grid.hpp"
 #include "chain_select.hpp"
 #include "contact_law.hpp"
+#include "pair_history.hpp"
 #include "registry.hpp"
 #include "segment_geometry.hpp"
 
@@ -74,6 +75,14 @@ class SegmentContactPair : public PairStyle {
         edges_.push_back(
             Edge{ch.edge_tail(e), ch.edge_head(e), static_cast<int>(c), e, ch.rest_length[e]});
     }
+    // a list read from a checkpoint knows its edges by number, in the numbering of now
+    if (tails_from_ids_)
+      for (auto& e : list_)
+        if (static_cast<size_t>(std::max(e.e1, e.e2)) < edges_.size()) {
+          e.t1 = edges_[static_cast<size_t>(e.e1)].a;
+          e.t2 = edges_[static_cast<size_t>(e.e2)].a;
+        }
+    tails_from_ids_ = false;
     need_build_ = true;
     bound_ = true;
   }
@@ -157,6 +166,7 @@ class SegmentContactPair : public PairStyle {
       e.st.active = h[k + 6] != 0;
       list_.push_back(e);
     }
+    tails_from_ids_ = true;
     schedule_.load(st);
   }
 
@@ -167,6 +177,7 @@ class SegmentContactPair : public PairStyle {
   };
   struct Entry {
     int e1 = 0, e2 = 0;
+    int t1 = 0, t2 = 0;  // the edges' first nodes: edge numbers change when a chain grows
     FrictionState st;
   };
 
@@ -215,23 +226,25 @@ class SegmentContactPair : public PairStyle {
           Entry en;
           en.e1 = static_cast<int>(k);
           en.e2 = j;
+          en.t1 = e.a;
+          en.t2 = o.a;
           list_.push_back(en);
         }
       });
       std::sort(list_.begin() + static_cast<long>(first), list_.end(),
                 [](const Entry& a, const Entry& b) { return a.e2 < b.e2; });
     }
-    // carry the friction history of pairs that stay listed (both lists are sorted)
-    size_t j = 0;
-    for (auto& e : list_) {
-      while (j < old_.size() && (old_[j].e1 < e.e1 || (old_[j].e1 == e.e1 && old_[j].e2 < e.e2)))
-        ++j;
-      if (j < old_.size() && old_[j].e1 == e.e1 && old_[j].e2 == e.e2) e.st = old_[j].st;
-    }
+    // carry the friction history of pairs that stay listed, matched by the edges' tail
+    // nodes (a chain fed at its front renumbers its edges)
+    carry_pair_history(
+        old_, list_, [](const Entry& e) { return node_pair_key(e.t1, e.t2, true); },
+        [](const Entry& e) { return e.st.active || e.st.stick; },
+        [](const Entry& from, Entry& to) { to.st = from.st; });
     schedule_.built(sim);
     need_build_ = false;
   }
 
+  bool tails_from_ids_ = false;
   double a_;
   ContactLaw law_;
   RebuildSchedule schedule_;

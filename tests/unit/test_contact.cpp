@@ -282,3 +282,55 @@ TEST(NodeEdgeContactPair, ExcludesChainNeighboursAndNeeds2D) {
                             P({{"stiffness", 1.0}, {"mu_static", 0.1}, {"mu_dynamic", 0.2}})),
                InputError);
 }
+
+namespace {
+// A stuck contact of wire b on edge [3, 4] of wire a builds up its stick spring; then
+// wire a grows a node at its front (injection), which renumbers all of its edges. The
+// friction force must carry on from its stretched spring (history matched by node
+// ids), not restart from zero on a fresh contact.
+double friction_jump_on_front_growth(int dim, const RawParams& pair) {
+  Simulation sim(dim, 1);
+  sim.verbose = false;
+  std::vector<Vec3> a;
+  for (int i = 0; i < 8; ++i) a.emplace_back(i, 0, 0);
+  sim.add_chain("a", a, 1.0, false);
+  // 2D: a node 0.9 above the middle of [3, 4] (d = 1); 3D: a rod across it, 1.95 above
+  // (2 a = 2), out of reach of [2, 3] and [4, 5]
+  if (dim == 2)
+    sim.add_chain("b", {Vec3(3.5, 0.9, 0), Vec3(3.5, 1.9, 0)}, 1.0, false);
+  else
+    sim.add_chain("b", {Vec3(3.5, 1.95, -0.5), Vec3(3.5, 1.95, 0.5)}, 1.0, false);
+  sim.add_pair(dim == 2 ? "contact/node-edge" : "contact/segment", pair);
+  sim.dt = 0.01;
+  for (int i : sim.group("b")) sim.nodes().v[i] = Vec3(0.5, 0, 0);
+  auto tangential = [&] {
+    sim.compute_forces();
+    double fx = 0;
+    for (int i : sim.group("b")) fx += sim.nodes().f[i].x();
+    return fx;
+  };
+  double f0 = 0, f1 = 0;
+  for (int k = 0; k < 4; ++k) f0 = f1, f1 = tangential();
+  EXPECT_LT(f1, f0);  // the spring is stretching: the force grows against the motion
+  sim.grow_chain("a", true, Vec3(-1, 0, 0), 1.0, 1.0);
+  const double f2 = tangential();
+  // one more step of stretching adds what the last did
+  return std::abs((f2 - f1) - (f1 - f0)) / std::abs(f1 - f0);
+}
+}  // namespace
+
+TEST(NodeEdgeContactPair, FrictionHistoryFollowsTheEdgeWhenAChainGrowsAtItsFront) {
+  EXPECT_LT(friction_jump_on_front_growth(2, P({{"diameter", 1.0},
+                                                {"stiffness", 1e3},
+                                                {"mu_static", 0.9},
+                                                {"stick_stiffness", 100.0}})),
+            1e-6);
+}
+
+TEST(SegmentContactPair, FrictionHistoryFollowsTheEdgeWhenAChainGrowsAtItsFront) {
+  EXPECT_LT(friction_jump_on_front_growth(3, P({{"radius", 1.0},
+                                                {"youngs_modulus", 1000.0},
+                                                {"mu_static", 0.9},
+                                                {"stick_stiffness", 100.0}})),
+            1e-6);
+}

@@ -101,6 +101,10 @@ void Simulation::read_checkpoint(const std::string& path) {
   if (static_cast<int>(sc[4]) != dim_)
     throw InputError("checkpoint '" + path + "' is " + std::to_string(int(sc[4])) +
                      "D, the scene is " + std::to_string(dim_) + "D");
+  // styles create some node properties when they first bind (e.g. the shell's
+  // dof_mask for its ghosts): bind them now, so a fresh scene that has not run yet
+  // holds the same properties as the run that wrote the checkpoint
+  if (nodes_.size() > 0) build_schedule();
   auto nodes = h5::open_group(f, "nodes");
   std::vector<hsize_t> dims;
   auto pos = h5::read_doubles(nodes, "position", &dims);

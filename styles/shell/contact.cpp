@@ -42,6 +42,11 @@ class ShellContactPair : public PairStyle {
            "neighbours and touch only across a ridge (MODELS.md §6.10: h; a few h keeps the "
            "tightly curved core of a thick e-cone from touching itself)")
         .positive();
+    s.string("near_contact",
+             "ridge: near neighbours touch only while their normals oppose (MODELS.md §6.10); "
+             "never: they never touch (no force that switches on with the sign of n1.n2)")
+        .def(std::string("ridge"))
+        .choices({"ridge", "never"});
     s.string("dense",
              "closest: one force per triangle pair along its closest points (MODELS.md §6.10); "
              "all: one per vertex-triangle and edge-edge feature pair within h, a smoother sum "
@@ -82,6 +87,7 @@ class ShellContactPair : public PairStyle {
     k_ = p.has("k") ? p.real("k") : p.real("young") * h_ * mean_edge_;
     skin_ = p.has("skin") ? p.real("skin") : h_;
     near_ = p.has("near_distance") ? p.real("near_distance") : h_;
+    near_never_ = p.str("near_contact") == "never";
     far_ = p.real("far_distance");
     dense_all_ = p.str("dense") == "all";
     set_friction(p);
@@ -125,6 +131,7 @@ class ShellContactPair : public PairStyle {
     full["mesh"] = mesh_name_;
     full["thickness"] = h_;
     full["near_distance"] = near_;
+    full["near_contact"] = std::string(near_never_ ? "never" : "ridge");
     full["far_distance"] = far_;
     full["dense"] = std::string(dense_all_ ? "all" : "closest");
     if (!full.count("mu_static")) full["mu_static"] = friction_.mu_static;
@@ -186,7 +193,8 @@ class ShellContactPair : public PairStyle {
         B[k] = x[base_ + T[c.t2][k]];
       }
       const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
-      if (c.near && n1.dot(n2) > 0) continue;  // near neighbours touch only across a ridge
+      // near neighbours touch only across a ridge (or never)
+      if (c.near && (near_never_ || n1.dot(n2) > 0)) continue;
       if (separated(A, B, n1, n2)) continue;
       // normal forces of this pair; friction acts once per pair on their sum, at the
       // force-weighted contact point (so dense = all and closest share one stick spring)
@@ -479,6 +487,7 @@ class ShellContactPair : public PairStyle {
   std::shared_ptr<const shell::GhostedMesh> mesh_;
   int base_ = 0;
   double mean_edge_ = 0, k_ = 0, skin_ = 0, near_ = 0, far_ = 0, m_min_ = 1;
+  bool near_never_ = false;
   bool dense_all_ = false;
   std::vector<shell::FeatureMask> masks_;
   std::unordered_map<std::uint64_t, FrictionState> restored_;  // from a checkpoint

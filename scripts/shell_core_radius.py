@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Core radius R_C of the e-cone against the thickness h (MODELS.md §6.11, §7.2 S-1):
 runs examples/shells/econe.lua without self-contact up to phi_e (default 3, below the
-first contact of every h) on a disc of outer edge 1/8 whose core is refined `level`
-times (refine_center = 0.3), for each h and level, and writes <out>.csv (one row per
+first contact of every h) on a disc of outer edge `--edge` (default 1/8) whose core is
+refined `level` times (refine_center = 0.3), for each h and level, and writes <out>.csv (one row per
 run, appended at once, so an interrupted study resumes) and <out>.png: R_C(h) per
 level with a power-law fit on the finest level, and R_C against the core edge (mesh
 convergence). R_C is the energy criterion of compute core_radius; R_C_s (U_s below 10 %
@@ -19,16 +19,16 @@ import tempfile
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-FIELDS = ["h", "level", "core_edge", "phi_e", "R_C", "R_C_s", "Eb_hat", "E_s_over_E_b",
+FIELDS = ["h", "edge", "level", "core_edge", "phi_e", "R_C", "R_C_s", "Eb_hat", "E_s_over_E_b",
           "triangles", "fire_steps", "wall_s", "status", "error"]
 
 
 def run_one(a, h, level):
-    row = {"h": h, "level": level, "core_edge": 0.125 / 2 ** level, "phi_e": a.phi}
+    row = {"h": h, "edge": a.edge, "level": level, "core_edge": a.edge / 2 ** level, "phi_e": a.phi}
     with tempfile.TemporaryDirectory() as tmp:
         args = [a.slender, "-q", os.path.join(a.examples, "shells", "econe.lua"), "-v", "fast=1",
                 "-v", f"h={h}", "-v", f"phi_max={a.phi}", "-v", "contact=0", "-v", "plots=0",
-                "-v", "refine_center=0.3", "-v", f"refine_levels={level}", "-v", f"out={tmp}/o"]
+                "-v", f"edge={a.edge}", "-v", "refine_center=0.3", "-v", f"refine_levels={level}", "-v", f"out={tmp}/o"]
         p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
         res = {}
         for line in p.stdout.splitlines():
@@ -57,13 +57,14 @@ def plot(rows, out):
     if not ok:
         return
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
-    levels = sorted({int(r["level"]) for r in ok})
+    meshes = sorted({(float(r["edge"]), int(r["level"])) for r in ok}, key=lambda m: (-m[0], m[1]))
     fit = None
-    for lv in levels:
-        rs = sorted((float(r["h"]), float(r["R_C"])) for r in ok if int(r["level"]) == lv)
+    for e, lv in meshes:
+        rs = sorted((float(r["h"]), float(r["R_C"])) for r in ok
+                    if (float(r["edge"]), int(r["level"])) == (e, lv))
         hs, rc = np.array(rs).T
-        ax[0].loglog(hs, rc, "o-", label=f"core edge 1/{int(8 * 2 ** lv)}")
-        if lv == levels[-1] and len(hs) >= 2:
+        ax[0].loglog(hs, rc, "o-", label=f"edge 1/{round(1 / e)}, core 1/{round(2 ** lv / e)}")
+        if (e, lv) == meshes[-1] and len(hs) >= 2:
             p, c = np.polyfit(np.log(hs), np.log(rc), 1)
             fit = (np.exp(c), p)
             hh = np.geomspace(hs.min(), hs.max(), 20)
@@ -72,9 +73,12 @@ def plot(rows, out):
     ax[0].set_ylabel("R_C / R")
     ax[0].legend(fontsize=8)
     for hv in sorted({float(r["h"]) for r in ok}):
-        rs = sorted((float(r["core_edge"]), float(r["R_C"])) for r in ok if float(r["h"]) == hv)
-        e, rc = np.array(rs).T
-        ax[1].semilogx(e, rc, "o-", label=f"h = {hv:g}")
+        for e in sorted({float(r["edge"]) for r in ok}, reverse=True):
+            rs = sorted((float(r["core_edge"]), float(r["R_C"])) for r in ok
+                        if float(r["h"]) == hv and float(r["edge"]) == e)
+            if rs:
+                ce, rc = np.array(rs).T
+                ax[1].semilogx(ce, rc, "o-" if e >= 0.1 else "s--", label=f"h = {hv:g}, edge 1/{round(1 / e)}")
     ax[1].set_xlabel("core edge / R")
     ax[1].set_ylabel("R_C / R")
     ax[1].legend(fontsize=8)
@@ -93,17 +97,19 @@ def main():
     ap.add_argument("--h", type=float, nargs="+", default=[0.04, 0.02, 0.01, 0.005])
     ap.add_argument("--levels", type=int, nargs="+", default=[2, 3, 4, 5])
     ap.add_argument("--phi", type=float, default=3.0)
+    ap.add_argument("--edge", type=float, default=0.125, help="outer edge of the disc mesh")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "shells", "core_radius"))
     a = ap.parse_args()
     path = a.out + ".csv"
     rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
-    done = {(float(r["h"]), int(r["level"])) for r in rows if r["status"] == "ok"}
+    done = {(float(r["h"]), float(r.get("edge") or 0.125), int(r["level"])) for r in rows
+            if r["status"] == "ok"}
     if not os.path.exists(path):
         with open(path, "w") as fh:
             csv.DictWriter(fh, FIELDS).writeheader()
     for lv in sorted(a.levels):
         for h in a.h:
-            if (h, lv) in done:
+            if (h, a.edge, lv) in done:
                 continue
             row = run_one(a, h, lv)
             with open(path, "a") as fh:

@@ -76,8 +76,16 @@ def econe(args):
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     axes[0].plot(phi, d["Eb_hat"], "o-")
     axes[0].set_ylabel(r"$\hat E_b$")
-    axes[1].plot(phi, d["E_s"] / d["E_b"], "o-")
+    # the flat disc before it buckles has E_b ~ 0: leave those ratios out
+    bent = d["Eb_hat"] > 1e-3 * max(d["Eb_hat"].max(), 1e-300)
+    axes[1].plot(phi[bent], d["E_s"][bent] / d["E_b"][bent], "o-", label="$E_s / E_b$")
     axes[1].set_ylabel(r"$E_s / E_b$")
+    if "R_C" in d and (d["R_C"] > 0).any():
+        # the core radius of compute core_radius, on a second axis
+        ax = axes[1].twinx()
+        okr = bent & (d["R_C"] > 0)
+        ax.plot(phi[okr], d["R_C"][okr], "s--", color="tab:red", label="$R_C$")
+        ax.set_ylabel(r"core radius $R_C / R$", color="tab:red")
     ok = d["gamma"] >= 0
     axes[2].plot(phi[ok], np.degrees(d["gamma"][ok]), "o-")
     axes[2].set_ylabel(r"contact-plane angle $\gamma$ (deg)")

@@ -119,15 +119,13 @@ TEST(ShellContact, FlatShellIsNotRepelledByItsNeighbours) {
   EXPECT_EQ(sim->max_force(), 0.0);
 }
 
-TEST(ShellContact, FoldedShellIsRepelled) {
-  // a strip folded flat on itself: the two halves, far apart along the surface, touch
-  auto sim = std::make_unique<Simulation>(3, 1);
-  sim->verbose = false;
-  shell::add_surface(*sim, "s", shell::make_rectangle(2.0, 0.5, 16, 4), 0.0);
-  sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", 0.05}}));
-  const double gap = 0.03, R = gap / 2;
-  for (auto& x : sim->nodes().x) {
-    const double s = x.x() - 1.0;  // fold round a half cylinder of radius gap/2 at x = 1
+namespace {
+// Folds a strip lying on 0 <= x <= 2 flat onto itself round a half cylinder of radius
+// gap / 2 at x = 1: the two halves, far apart along the surface, lie gap apart.
+void fold_at_x1(Simulation& sim, double gap) {
+  const double R = gap / 2;
+  for (auto& x : sim.nodes().x) {
+    const double s = x.x() - 1.0;
     if (s <= 0) {
       x.z() = 0;
     } else if (s < M_PI * R) {
@@ -136,6 +134,17 @@ TEST(ShellContact, FoldedShellIsRepelled) {
       x = Vec3(1.0 - (s - M_PI * R), x.y(), gap);
     }
   }
+}
+}  // namespace
+
+TEST(ShellContact, FoldedShellIsRepelled) {
+  // a strip folded flat on itself: the two halves, far apart along the surface, touch
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  shell::add_surface(*sim, "s", shell::make_rectangle(2.0, 0.5, 16, 4), 0.0);
+  sim->add_pair("contact/shell", P({{"mesh", std::string("s")}, {"thickness", 0.05}}));
+  const double gap = 0.03;
+  fold_at_x1(*sim, gap);
   sim->compute_forces();
   EXPECT_GT(sim->find_style("contact/shell")->value("contacts"), 10);
   double fz_top = 0, fz_bottom = 0;
@@ -164,17 +173,7 @@ TEST(ShellContact, NearNeighboursTouchAcrossARidgeOrNever) {
                                       {"thickness", 0.05},
                                       {"near_distance", 0.3},
                                       {"near_contact", std::string(k ? "never" : "ridge")}}));
-    const double gap = 0.03, R = gap / 2;
-    for (auto& x : sim->nodes().x) {
-      const double s = x.x() - 1.0;
-      if (s <= 0) {
-        x.z() = 0;
-      } else if (s < M_PI * R) {
-        x = Vec3(1.0 + R * std::sin(s / R), x.y(), R * (1 - std::cos(s / R)));
-      } else {
-        x = Vec3(1.0 - (s - M_PI * R), x.y(), gap);
-      }
-    }
+    fold_at_x1(*sim, 0.03);
     sim->compute_forces();
     contacts[k] = sim->find_style("contact/shell")->value("contacts");
     fold_force[k] = 0;

@@ -9,12 +9,20 @@
   spiral    bending energy E_b(phi) of the spiral scene against the analytic spiral
             model of §2.8, both the thesis' printed form (3.10) and the corrected one,
             the constant C matched at the first sample
+  jam       where a run jams under each stop rule of MODELS.md §2.4: the packing
+            density at which the averaged injection force (feed.force_avg) first
+            exceeds each threshold F_stop, and where it first grows tenfold within
+            dphi = 0.005; the e-folding dphi of F near the stop says how much phi_jam
+            moves per doubling of F_stop. Give each run's thermo CSV(s) joined by '+'
+            (a restarted run appends to a second file); runs made with the threshold
+            raised (-v jam_force=1e9) show every threshold.
 
 Each mode prints its fit with standard errors and writes a CSV and a PNG.
 
   /usr/bin/python3 scripts/crumple_stats.py loops classic_thermo.csv [more.csv ...] --out docs/crumple2d/loops
   /usr/bin/python3 scripts/crumple_stats.py force force_samples.csv --out docs/crumple2d/force
   /usr/bin/python3 scripts/crumple_stats.py spiral spiral_thermo.csv --radius 10 --out docs/crumple2d/spiral
+  /usr/bin/python3 scripts/crumple_stats.py jam f15_thermo.csv a.csv+b.csv --labels f=15 f=50 --out docs/crumple2d/jam
 """
 import argparse
 import csv
@@ -188,9 +196,72 @@ def mode_spiral(a):
     print("wrote", a.out + ".csv", a.out + ".png")
 
 
+def read_run(spec):
+    """One run's thermo rows from 'a.csv+b.csv', ordered by step, repeated steps once."""
+    by_step = {}
+    for r in read(spec.split("+")):
+        by_step[r["step"]] = r
+    return [by_step[k] for k in sorted(by_step)]
+
+
+def first_crossing(phi, F, level):
+    i = np.nonzero(F > level)[0]
+    return phi[i[0]] if len(i) else float("nan")
+
+
+def first_growth(phi, F, factor, dphi):
+    """First phi where F exceeds factor times its value at phi - dphi (MODELS.md §2.4)."""
+    for i in range(len(phi)):
+        j = np.searchsorted(phi, phi[i] - dphi)
+        if phi[i] - phi[j] <= dphi and F[j] > 0 and F[i] > factor * F[j]:
+            return phi[i]
+    return float("nan")
+
+
+def mode_jam(a):
+    labels = a.labels or a.files
+    if len(labels) != len(a.files):
+        raise SystemExit("jam: give one label per run")
+    series, out = [], []
+    for spec, label in zip(a.files, labels):
+        # --phi-min skips the buckling of the initial straight wire, whose force
+        # peak is not a jam
+        rows = [r for r in read_run(spec) if "feed.force_avg" in r and r["feed.phi"] >= a.phi_min]
+        phi = np.array([r["feed.phi"] for r in rows])
+        F = np.array([r["feed.force_avg"] for r in rows])
+        # e-folding of F in phi over the last decade of force below the top threshold
+        top = max(t for t in a.thresholds if np.any(F > t)) if np.any(F > min(a.thresholds)) else F.max()
+        stop = np.argmax(F > top) if np.any(F > top) else len(F)
+        sel = (F[:stop] > top / 10) & (F[:stop] > 0)
+        efold = float("nan")
+        if sel.sum() >= 5:
+            b, _, sb, _ = linfit(phi[:stop][sel], np.log(F[:stop][sel]))
+            efold = 1 / b if b > 0 else float("nan")
+        grow = first_growth(phi, F, 10.0, 0.005)
+        print(f"{label}: {len(F)} samples up to phi = {phi.max():.4f}, F_max {F.max():.1f}; "
+              f"e-folding dphi of F below {top:g}: {efold:.4f} (phi_jam moves {efold * math.log(2):.4f} "
+              f"per doubling of F_stop); tenfold growth within 0.005 first at phi = {grow:.4f}")
+        for t in a.thresholds:
+            pj = first_crossing(phi, F, t)
+            print(f"  F_stop = {t:g}: phi_jam = {pj:.4f}")
+            out.append([label, t, f"{pj:.5f}", f"{efold:.5f}", f"{grow:.5f}", f"{phi.max():.5f}",
+                        f"{F.max():.4g}"])
+        series.append({"x": phi, "y": np.maximum(F, 1e-3), "style": "-", "label": label})
+    with open(a.out + ".csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["run", "F_stop", "phi_jam", "efold_dphi", "phi_growth10", "phi_last", "F_max"])
+        w.writerows(out)
+    for t in a.thresholds:
+        series.append({"x": [0, max(s["x"].max() for s in series[:len(labels)])], "y": [t, t],
+                       "style": ":", "label": f"F_stop = {t:g}"})
+    plot(a.out + ".png", series, "packing density phi", "injection force (1e3-step average)",
+         logx=False, title="injection force until the wire jams")
+    print("wrote", a.out + ".csv", a.out + ".png")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("mode", choices=["loops", "force", "spiral"])
+    ap.add_argument("mode", choices=["loops", "force", "spiral", "jam"])
     ap.add_argument("files", nargs="+")
     ap.add_argument("--out", required=True, help="output stem (CSV and PNG)")
     ap.add_argument("--phi-min", type=float, default=0.0)
@@ -199,9 +270,12 @@ def main():
     ap.add_argument("--diameter", type=float, default=1.0)
     ap.add_argument("--YI", type=float, default=60.0, help="bending stiffness YI = k2 l0 (spiral)")
     ap.add_argument("--report-max", type=float, default=0.9, help="spiral: deviations reported up to this phi")
+    ap.add_argument("--labels", nargs="*", help="jam: one label per run")
+    ap.add_argument("--thresholds", nargs="*", type=float, default=[25, 50, 100, 200, 400],
+                    help="jam: stop thresholds F_stop")
     a = ap.parse_args()
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    {"loops": mode_loops, "force": mode_force, "spiral": mode_spiral}[a.mode](a)
+    {"loops": mode_loops, "force": mode_force, "spiral": mode_spiral, "jam": mode_jam}[a.mode](a)
 
 
 if __name__ == "__main__":

@@ -7,6 +7,10 @@
 --          -v inner=0.25 grows a ring (annulus R_i <= r <= 1, both edges free; S-4) instead of a disc
 --          -v mode=3 -v mode_amp=1e-3 starts from z = amp r^2 cos(3 phi) (the n = 3 e-cone of S-5)
 --          -v contact=0 leaves self-contact out (the self-intersecting branch S-2 compares with)
+--          -v resume=1 continues an interrupted ramp from its last recorded phi_e (OUT/ramp.h5 and
+--          OUT/ramp_state.lua, rewritten after every increment; a fresh start when there are none)
+--          -v stop_at=PHI ends the run after the increment that reaches PHI, keeping that state for
+--          -v resume=1 (long ramps split over several sessions)
 local slender = require("slender")
 
 local fast = slender.var("fast", 0) == 1
@@ -16,13 +20,36 @@ local kiss_bisections = slender.var("kiss_bisections", fast and 4 or 6)
 local scene = require("lib.econe").build{fast = fast, out = "econe_out"}
 local sim, relax, record, out = scene.sim, scene.relax, scene.record, scene.out
 local h, edge, inner, nodes, tris = scene.h, scene.edge, scene.inner, scene.nodes, scene.tris
-scene.open_log("econe.csv")
-local t0 = scene.t0
-
 local kiss, kiss_lo, wings_before = nil, nil, 0
 local ebmax, phi_ebmax = -1, 0
 local prev_phi, phi = 0, 0
 local ckpt = out .. "/before_step.h5"
+
+-- resumable ramp: the state after each recorded increment and the ramp's bookkeeping
+local ramp_ckpt, ramp_state = out .. "/ramp.h5", out .. "/ramp_state.lua"
+local resumed = slender.var("resume", 0) == 1 and loadfile(ramp_state)
+if resumed then
+  local r = resumed()
+  sim:read_checkpoint(ramp_ckpt)
+  phi, kiss, kiss_lo, wings_before = r.phi, r.kiss, r.kiss_lo, r.wings_before
+  ebmax, phi_ebmax = r.ebmax, r.phi_ebmax
+  scene.steps_total, scene.t0 = r.steps_total, scene.t0 - r.wall
+  print(string.format("resumed at phi_e = %.4f from %s", phi, ramp_ckpt))
+end
+scene.open_log("econe.csv", nil, resumed and true or false)
+local function save_ramp()
+  sim:write_checkpoint(ramp_ckpt)
+  local fmt = function(v) return v and string.format("%.17g", v) or "nil" end
+  local f = assert(io.open(ramp_state .. ".tmp", "w"))
+  f:write(string.format("return {phi = %s, kiss = %s, kiss_lo = %s, wings_before = %s, ebmax = %s, " ..
+                        "phi_ebmax = %s, steps_total = %s, wall = %s}\n", fmt(phi), fmt(kiss),
+                        fmt(kiss_lo), fmt(wings_before), fmt(ebmax), fmt(phi_ebmax),
+                        fmt(scene.steps_total), fmt(slender.clock() - scene.t0)))
+  f:close()
+  assert(os.rename(ramp_state .. ".tmp", ramp_state))
+end
+local stop_at = slender.var("stop_at", math.huge)
+
 while phi < phi_max - 1e-12 do
   prev_phi = phi
   sim:write_checkpoint(ckpt)
@@ -52,14 +79,22 @@ while phi < phi_max - 1e-12 do
   if not kiss and sim:value("koiter.Eb_hat") > ebmax then
     ebmax, phi_ebmax = sim:value("koiter.Eb_hat"), phi
   end
+  save_ramp()
+  if phi >= stop_at - 1e-12 and phi < phi_max - 1e-12 then break end
 end
 scene.csv:close()
+if phi < phi_max - 1e-12 then
+  print(string.format("stopped at phi_e = %.4f (stop_at); continue with -v resume=1", phi))
+  return
+end
 sim:write_dump("surface")
 local plots = require("lib.plots")
 plots.run("econe", out .. "/econe.csv", out .. "/econe.png")
 plots.run("render", out .. "/surface.h5", out .. "/shape.png")
 os.remove(ckpt)
-local wall = slender.clock() - t0
+os.remove(ramp_ckpt)
+os.remove(ramp_state)
+local wall = slender.clock() - scene.t0
 -- -v check=1 (the test suite): a kissing angle exists, after a two-winged (n = 2) shape
 if slender.var("check", 0) == 1 then
   if not kiss then error("e-cone: no self-contact up to phi_e = " .. phi_max) end

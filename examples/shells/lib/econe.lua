@@ -83,8 +83,8 @@ function M.build(opts)
   print(string.format("e-cone: h = %g, %d nodes, %d triangles, ftol = %.3g", s.h, s.nodes, s.tris,
                       s.ftol))
 
-  local t0 = slender.clock()
-  s.t0 = t0
+  -- wall times count from s.t0; a resumed ramp moves it back by the earlier runs' time
+  s.t0 = slender.clock()
   -- grow to phi_e and relax to equilibrium; returns the FIRE steps
   s.steps_total = 0  -- FIRE steps of all relaxations, for element-steps/s
   function s.relax(phi)
@@ -93,15 +93,18 @@ function M.build(opts)
     s.steps_total = s.steps_total + n
     return n
   end
-  -- a CSV log of equilibrium states; extra columns (e.g. the branch) go first
-  function s.open_log(name, extra)
+  -- a CSV log of equilibrium states; extra columns (e.g. the branch) go first; `append`
+  -- continues the log of a resumed run
+  function s.open_log(name, extra, append)
     s.extra = extra or {}
-    local csv = io.open(s.out .. "/" .. name, "w")
+    local path = s.out .. "/" .. name
+    local csv = assert(io.open(path, append and "a" or "w"))
+    s.csv = csv
+    if append then return end
     local head = {}
     for _, k in ipairs(s.extra) do head[#head + 1] = k end
     csv:write(table.concat(head, ",") .. (#head > 0 and "," or "") ..
               "phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,R_C,R_C_s,steps,wall_s\n")
-    s.csv = csv
   end
   function s.record(phi, steps, extra_values)
     local row = {}
@@ -110,7 +113,7 @@ function M.build(opts)
                        sim:value("koiter.Eb_hat"), sim:value("koiter.area"), sim:value("rim.n"),
                        sim:value("rim.a2"), sim:value("rim.a3"), s.cv("contacts"),
                        s.cv("far_contacts"), s.cv("gamma"), s.core_radius(),
-                       s.core_radius("core_s"), steps, slender.clock() - t0} do
+                       s.core_radius("core_s"), steps, slender.clock() - s.t0} do
       row[#row + 1] = string.format("%.8g", v)
     end
     s.csv:write(table.concat(row, ",") .. "\n")

@@ -47,6 +47,9 @@ function M.build(p)
   sim:fix("cavity", "wall/circle", { radius = r, diameter = d, stiffness = kc, damping = dc,
     mu_static = mu, mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s })
   sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(k1 * m) })
+  -- the channels are kinematic, so jam_force stands for the feed rollers' strength: 0.1 k1 d
+  -- is 10 % axial strain of the wire (docs/crumple2d/timings.md: doubling it moves the
+  -- jamming density by 0.006-0.02 at f = 10-50)
   sim:fix("feed", "inject/wire", { chain = "wire", radius = r, speed = s, diameter = d,
     jam_force = slender.var("jam_force", 0.1 * k1 * d), jam_window = 1000, max_phi = max_phi })
   -- dt = 0.01 sqrt(m / k1): half of MODELS.md's [C] default 0.02 sqrt(m / k1), which

@@ -143,6 +143,13 @@ class KoiterShell : public ShellStyle {
   }
 
   double max_frequency(const Simulation&) const override { return omega_; }
+  // The frequency estimate depends on the configuration and growth of the first run; a
+  // continued run keeps it so that its automatic step is the one it would have taken.
+  void save_state(StateMap& st) const override { st["omega"] = {omega_}; }
+  void load_state(const StateMap& st) override {
+    if (auto it = st.find("omega"); it != st.end() && !it->second.empty() && it->second[0] > 0)
+      omega_ = it->second[0];
+  }
 
   std::vector<std::string> value_keys() const override {
     return {"stretch", "bend", "energy", "Eb_hat", "area", "omega", "elements", "nodes"};

@@ -292,6 +292,47 @@ TEST(ShellContact, AFreshSceneReadsTheCheckpointOfARunOne) {
   std::remove("shell_fresh_restart.h5");
 }
 
+// The automatic step comes from the shell's largest frequency, estimated once on the
+// configuration of the first run. A fresh scene reading a checkpoint must take the
+// estimate from the checkpoint, not re-estimate it on the restart configuration, or the
+// continued run takes another step (the e-cone ramps resumed 1e-6 away from their
+// uninterrupted runs).
+TEST(ShellContact, AFreshSceneKeepsTheAutomaticStepOfTheRunItContinues) {
+  auto make = [] {
+    auto sim = std::make_unique<Simulation>(3, 1);
+    sim->verbose = false;
+    shell::add_surface(*sim, "d", shell::make_disc(1.0, 2), 1e-3);
+    sim->add_growth("g", "econe", P({{"phi_e", 0.0}}));
+    sim->add_shell("koiter", P({{"mesh", std::string("d")},
+                                {"thickness", 0.05},
+                                {"growth", std::string("g")},
+                                {"boundary", std::string("mirror")}}));
+    sim->set_integrator("verlet", P({}));
+    return sim;
+  };
+  // as the e-cone deck does: the growth changes between runs
+  auto grow = [](Simulation& sim, double phi) {
+    RawParams p;
+    p["phi_e"] = phi;
+    sim.find_style("g")->modify(p);
+    sim.forces_valid = false;
+  };
+  auto a = make();
+  grow(*a, 1.0);
+  a->run(RunOptions{50, 0, nullptr});
+  grow(*a, 3.0);
+  a->run(RunOptions{400, 0, nullptr});
+  a->write_checkpoint("shell_auto_dt_restart.h5");
+  a->run(RunOptions{30, 0, nullptr});
+  auto b = make();
+  b->read_checkpoint("shell_auto_dt_restart.h5");
+  grow(*b, 3.0);
+  b->run(RunOptions{30, 0, nullptr});
+  EXPECT_EQ(a->dt, b->dt);
+  for (std::size_t i = 0; i < a->nodes().size(); ++i) EXPECT_EQ(a->nodes().x[i], b->nodes().x[i]);
+  std::remove("shell_auto_dt_restart.h5");
+}
+
 TEST(ShellContact, FrictionHistoryRestartsBitIdentically) {
   for (std::string dense : {"closest", "all"}) {
     auto sim = plate_on_plate(3, 0.8 * 0.02, P({{"mu_static", 0.5}, {"dense", dense}}));

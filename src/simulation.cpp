@@ -630,12 +630,23 @@ void Simulation::write_thermo(bool header) {
   std::vector<double> vals;
   vals.reserve(thermo.columns.size());
   for (auto& c : thermo.columns) vals.push_back(column(c));
+  const bool by_step = !thermo.columns.empty() && thermo.columns[0] == "step";
   if (!thermo.file.empty()) {
     if (!thermo_csv_.is_open()) {
       bool has_content = false;
       if (thermo.append) {
         std::ifstream old(thermo.file);
         has_content = old && old.peek() != std::ifstream::traits_type::eof();
+        std::string line, last;
+        while (std::getline(old, line))
+          if (!line.empty()) last = line;
+        if (has_content && by_step && last.rfind("step", 0) != 0) {
+          try {
+            thermo_last_step_ = std::stod(last.substr(0, last.find(',')));
+          } catch (const std::exception&) {
+            thermo_last_step_ = -1;
+          }
+        }
       }
       thermo_csv_.open(thermo.file, thermo.append ? std::ios::out | std::ios::app
                                                   : std::ios::out | std::ios::trunc);
@@ -643,6 +654,8 @@ void Simulation::write_thermo(bool header) {
       // appending under an existing header keeps one header per file
       thermo_header_written_ = has_content;
     }
+  }
+  if (!thermo.file.empty() && !(by_step && vals[0] == thermo_last_step_)) {
     if (!thermo_header_written_) {
       for (size_t i = 0; i < thermo.columns.size(); ++i)
         thermo_csv_ << (i ? "," : "") << thermo.columns[i];
@@ -656,6 +669,7 @@ void Simulation::write_thermo(bool header) {
     }
     thermo_csv_ << "\n";
     thermo_csv_.flush();
+    if (by_step) thermo_last_step_ = vals[0];
   }
   if (thermo.console && verbose) {
     if (header) {

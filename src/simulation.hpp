@@ -207,6 +207,10 @@ class Simulation {
   std::vector<std::vector<Vec4>> good_q_, good_qv_;
   std::ofstream thermo_csv_;
   bool thermo_header_written_ = false;
+  // step of the last row in the thermo file (when its first column is "step"): a run
+  // continuing where the last one ended, or a restart appending to its file, does not
+  // repeat that row
+  double thermo_last_step_ = -1;
   // guard state
   std::vector<Vec3> good_x_, good_v_;
   long good_step_ = -1;

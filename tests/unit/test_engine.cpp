@@ -247,6 +247,45 @@ TEST(StableDt, AutoUsesTheIntegratorLimit) {
   }
 }
 
+// A run that continues where the last one ended, in the same scene or appending to the
+// file of a restarted one, does not repeat the row of the step it starts from.
+TEST(Thermo, ContinuedRunsWriteEachStepOnce) {
+  auto make = [](bool append) {
+    auto s = std::make_unique<Simulation>(2, 9);
+    s->verbose = false;
+    s->add_chain("w", wiggly_chain(5, 2, 8, 0.2), 1.0, false);
+    s->add_bond("spring", P({{"k", 200.0}}));
+    s->set_integrator("verlet", P({{"dt", 0.001}}));
+    s->thermo.every = 5;
+    s->thermo.columns = {"step", "time"};
+    s->thermo.file = "thermo_once.csv";
+    s->thermo.append = append;
+    return s;
+  };
+  auto steps_in_file = [] {
+    std::ifstream in("thermo_once.csv");
+    std::string line;
+    std::vector<long> steps;
+    std::getline(in, line);
+    EXPECT_EQ(line, "step,time");
+    while (std::getline(in, line)) steps.push_back(std::stol(line.substr(0, line.find(','))));
+    return steps;
+  };
+  {
+    auto a = make(false);
+    a->run(RunOptions{10, 0, {}});
+    a->run(RunOptions{10, 0, {}});
+  }
+  EXPECT_EQ(steps_in_file(), (std::vector<long>{0, 5, 10, 15, 20}));
+  {
+    auto b = make(true);  // as a restart from the checkpoint of step 20
+    b->step = 20;
+    b->run(RunOptions{10, 0, {}});
+  }
+  EXPECT_EQ(steps_in_file(), (std::vector<long>{0, 5, 10, 15, 20, 25, 30}));
+  std::remove("thermo_once.csv");
+}
+
 #ifdef SLENDER_HAVE_HDF5
 TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   const std::string file = "test_dump.h5";

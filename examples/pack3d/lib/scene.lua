@@ -56,14 +56,25 @@ function M.build(p)
   sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
   sim:compute("count", "count", {})
   sim:compute("gyr", "gyration", { group = "rod", inside = R })
+  local restart = slender.var("restart", "")
   sim:thermo { every = slender.var("thermo_every", 10000), file = name .. "_thermo.csv",
-    columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/segment.contacts",
+    append = restart ~= "", columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/segment.contacts",
                 "sphere.contacts", "energy.bend", "energy.stretch", "energy.contact", "energy.twist",
                 "gyr.rg", "ke", "count.nodes" } }
   if output then
-    sim:dump("traj", "h5md", { file = name .. ".h5", every = slender.var("dump_every", 50000),
+    -- a restarted run writes a new trajectory file rather than replacing the first
+    local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
+    sim:dump("traj", "h5md", { file = traj, every = slender.var("dump_every", 50000),
                                fields = { "position", "bend.energy" } })
   end
+  -- long runs (R >= 20 takes hours to days): -v checkpoint_every=N writes
+  -- <name>_restart.h5 every N steps; -v restart=<file> continues from it (thermo CSV
+  -- appended, max_steps counted from step 0)
+  local checkpoint_every = slender.var("checkpoint_every", 0)
+  if checkpoint_every > 0 then
+    sim:dump("restart", "checkpoint", { file = name .. "_restart.h5", every = checkpoint_every })
+  end
+  if restart ~= "" then sim:read_checkpoint(restart) end
   return sim, { name = name, R = R, YI = YI, seed = seed, mu_s = mu_s, speed = speed }
 end
 
@@ -71,7 +82,7 @@ function M.run(p)
   local sim, ctx = M.build(p)
   local t0 = slender.clock()
   local node_steps, every = 0, 1000
-  sim:run { steps = slender.var("max_steps", 1e9), every = every,
+  sim:run { steps = slender.var("max_steps", 1e9) - sim:step(), every = every,
             callback = function(s) node_steps = node_steps + every * s:nnodes() end }
   local wall = slender.clock() - t0
   local R, YI = ctx.R, ctx.YI

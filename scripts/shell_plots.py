@@ -4,7 +4,7 @@
   shell_plots.py render SURFACE.h5 OUT.png [--field koiter.Ub] [--frame -1]
       the limit surface of a frame written by dump "shell", faces coloured by a
       per-face field (log scale for U_b), seen from two directions
-  shell_plots.py econe ECONE.csv OUT.png
+  shell_plots.py econe ECONE.csv OUT.png [--kiss PHI]
       E_b_hat, E_s/E_b and the contact-plane angle gamma against phi_e, with the
       first self-contact marked
   shell_plots.py sphere SPHERE.csv [OTHER.csv] OUT.png
@@ -89,13 +89,15 @@ def econe(args):
     ok = d["gamma"] >= 0
     axes[2].plot(phi[ok], np.degrees(d["gamma"][ok]), "o-")
     axes[2].set_ylabel(r"contact-plane angle $\gamma$ (deg)")
-    # first contact of the wings (far_contacts), or of anything in older files
+    # first contact of the wings: the deck's bisected angle (--kiss), else the first
+    # logged state with wing contacts (far_contacts), or with any contact in older files
     touch = np.nonzero(d.get("far_contacts", d["contacts"]) > 0)[0]
+    kiss = args.kiss if args.kiss is not None else (phi[touch[0]] if len(touch) else None)
     for ax in axes:
         ax.set_xlabel(r"excess angle $\phi_e$")
-        if len(touch):
-            ax.axvline(phi[touch[0]], color="r", ls=":", label="first contact")
-    if len(touch):
+        if kiss is not None:
+            ax.axvline(kiss, color="r", ls=":", label=f"first contact ({kiss:.3f})")
+    if kiss is not None:
         axes[0].legend()
     fig.tight_layout()
     fig.savefig(args.out, dpi=120)
@@ -164,6 +166,7 @@ def main():
     e = sub.add_parser("econe")
     e.add_argument("csv")
     e.add_argument("out")
+    e.add_argument("--kiss", type=float, help="first-contact angle to mark (the deck's bisection)")
     s = sub.add_parser("sphere")
     s.add_argument("files", nargs="+", help="one or two CSV files, then the output PNG")
     b = sub.add_parser("branches")

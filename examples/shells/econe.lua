@@ -89,7 +89,11 @@ if phi < phi_max - 1e-12 then
 end
 sim:write_dump("surface")
 local plots = require("lib.plots")
-plots.run("econe", out .. "/econe.csv", out .. "/econe.png")
+if kiss then
+  plots.run("econe", "--kiss=" .. kiss, out .. "/econe.csv", out .. "/econe.png")
+else
+  plots.run("econe", out .. "/econe.csv", out .. "/econe.png")
+end
 plots.run("render", out .. "/surface.h5", out .. "/shape.png")
 os.remove(ckpt)
 os.remove(ramp_ckpt)

@@ -9,10 +9,13 @@ run to jamming and classified (MODELS.md §2.7):
 
 Runs unattended and resumes: every finished run is appended to <out>.csv at once,
 and a restart skips the (yield, mu, seed) already there (failed runs are retried
-with --retry-failed). Writes <out>.png (majority class per point, with its share)
+with --retry-failed). With --work DIR and --checkpoint-every N each run keeps a
+checkpoint in DIR every N steps, and an interrupted run continues from it instead of
+starting over (its wall time counts the parts up to their last checkpoint). Writes <out>.png (majority class per point, with its share)
 and <out>_phi.png (mean jamming density).
 
   /usr/bin/python3 scripts/phase_diagram.py                      # the thesis' sweep, f = 50
+  /usr/bin/python3 scripts/phase_diagram.py --work /scratch/pd50  # ... continuing cut runs
   /usr/bin/python3 scripts/phase_diagram.py --f 10 --yields 0 0.02 0.04 0.06 \\
       --mus 0 0.2 0.4 0.6 --seeds 1 --out docs/crumple2d/phase_diagram_f10
 """
@@ -21,9 +24,11 @@ import concurrent.futures as cf
 import csv
 import os
 import shutil
+import json
 import subprocess
 import tempfile
 import threading
+import time
 
 import numpy as np
 
@@ -59,12 +64,45 @@ def run_once(a, y, mu, seed, dt):
             "-v", f"f={a.f}", "-v", f"s={a.s}", "-v", f"yield={y}", "-v", f"mu={mu}",
             "-v", f"seed={seed}", "-v", "output=false", "-v", f"max_steps={a.max_steps}",
             "-v", f"dt={dt!r}"]
-    with tempfile.TemporaryDirectory() as tmp:
-        try:
-            p = subprocess.run(args, cwd=tmp, capture_output=True, text=True, timeout=a.timeout)
-            rc, out, err = p.returncode, p.stdout, p.stderr
-        except subprocess.TimeoutExpired:
-            rc, out, err = -1, "", f"timeout after {a.timeout} s"
+    if not a.work:
+        with tempfile.TemporaryDirectory() as tmp:
+            rc, out, err = execute(a, args, tmp)
+        return parse_result(a, y, mu, seed, dt, rc, out, err)
+    # a kept run directory: continue from the run's last checkpoint, if any
+    tmp = os.path.join(a.work, f"f{a.f:g}_s{a.s:g}_y{y:g}_mu{mu:g}_seed{seed}_dt{dt:.6g}")
+    os.makedirs(tmp, exist_ok=True)
+    args += ["-v", f"checkpoint_every={a.checkpoint_every}"]
+    ckpt, state_file = os.path.join(tmp, "classic_restart.h5"), os.path.join(tmp, "parts.json")
+    state = json.load(open(state_file)) if os.path.exists(state_file) else {"wall": 0.0, "parts": 0}
+    if os.path.exists(ckpt):
+        # the previous part counts up to its last checkpoint; later work is redone
+        if "start" in state and os.path.getmtime(ckpt) > state["start"]:
+            state["wall"] += os.path.getmtime(ckpt) - state["start"]
+        shutil.copyfile(ckpt, os.path.join(tmp, "restart_in.h5"))
+        args += ["-v", "restart=restart_in.h5"]
+    state["start"] = time.time()
+    state["parts"] += 1
+    with open(state_file + ".tmp", "w") as fh:
+        json.dump(state, fh)
+    os.replace(state_file + ".tmp", state_file)
+    rc, out, err = execute(a, args, tmp)
+    row = parse_result(a, y, mu, seed, dt, rc, out, err)
+    if row.get("wall_s"):
+        row["wall_s"] = f"{float(row['wall_s']) + state['wall']:.6g}"
+    if row["status"] != "failed" or "timeout" not in row.get("error", ""):
+        shutil.rmtree(tmp, ignore_errors=True)  # finished: the checkpoint is no longer needed
+    return row
+
+
+def execute(a, args, cwd):
+    try:
+        p = subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=a.timeout)
+        return p.returncode, p.stdout, p.stderr
+    except subprocess.TimeoutExpired:
+        return -1, "", f"timeout after {a.timeout} s"
+
+
+def parse_result(a, y, mu, seed, dt, rc, out, err):
     row = {"f": a.f, "s": a.s, "yield": y, "mu": mu, "seed": seed, "dt": f"{dt:.6g}"}
     res = {}
     for line in out.splitlines():
@@ -151,6 +189,10 @@ def main():
     ap.add_argument("--max-steps", type=float, default=1e9)
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run")
     ap.add_argument("--retry-failed", action="store_true")
+    ap.add_argument("--work", default=None,
+                    help="keep each run's directory here, so an interrupted run continues from its checkpoint")
+    ap.add_argument("--checkpoint-every", type=int, default=1000000,
+                    help="steps between checkpoints of a run (with --work)")
     ap.add_argument("--no-retry-dt", dest="retry_dt", action="store_false",
                     help="do not repeat a run stopped by the instability guard with dt / 2")
     ap.add_argument("--snapshot", action="store_true",

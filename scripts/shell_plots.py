@@ -10,6 +10,11 @@
   shell_plots.py sphere SPHERE.csv [OTHER.csv] OUT.png
       bending and stretching energy against the confinement f = D / R_s, for one
       run or for the shrinking sphere and growth in a fixed sphere together
+  shell_plots.py sphere-maps SHRINK.h5 GROW.h5 OUT.png [--frame -1]
+      the U_b maps of the shrinking sphere (S-6) and growth in a fixed sphere (S-7)
+      at the same frame (the decks write one per sample, at equal f): both shapes on
+      one colour scale, the area-weighted distribution of U_b, and how much of E_b
+      sits in the most strained tenth of the area (printed too)
   shell_plots.py branches BRANCHES.csv OUT.png
       the S-2 stability run (econe_stability.lua): E_b_hat and gamma against phi_e
       on the symmetric branch held by friction, the skewed branch, and the release
@@ -125,6 +130,75 @@ def sphere(args):
     print(f"wrote {out}")
 
 
+def read_map(path, frame):
+    import h5py
+    with h5py.File(path, "r") as f:
+        tri = f["mesh/triangles"][()].astype(int)
+        pos = f["frames/position/value"][frame]
+        time = float(f["frames/position/time"][frame])
+        ub = f["frames/koiter.Ub/value"][frame][:, 0]
+    p = pos[tri]
+    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    return tri, pos, time, ub, area
+
+
+def concentration(ub, area, top=0.1):
+    """Share of the bending energy in the `top` fraction of the area with the highest U_b."""
+    order = np.argsort(-ub)
+    a, e = np.cumsum(area[order]), np.cumsum((ub * area)[order])
+    return float(np.interp(top * a[-1], a, e) / e[-1])
+
+
+def sphere_maps(args):
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    runs = [("shrinking sphere (S-6)", *read_map(args.shrink, args.frame)),
+            ("growth in a fixed sphere (S-7)", *read_map(args.grow, args.frame))]
+    logs = [np.log10(np.maximum(r[4], 1e-12)) for r in runs]
+    both = np.concatenate(logs)
+    norm = plt.Normalize(np.percentile(both, 2), np.percentile(both, 98))
+    fig = plt.figure(figsize=(13, 8))
+    for k, (label, tri, pos, time, ub, area) in enumerate(runs):
+        lo, hi = pos.min(axis=0), pos.max(axis=0)
+        c, r = 0.5 * (lo + hi), 0.5 * (hi - lo).max()
+        for j, (elev, azim) in enumerate([(30, -60), (90, -90)]):
+            ax = fig.add_subplot(2, 3, 3 * k + j + 1, projection="3d")
+            ax.add_collection3d(Poly3DCollection(pos[tri], facecolors=plt.cm.viridis(norm(logs[k])),
+                                                 edgecolor="k", linewidths=0.05))
+            for axis, set_lim in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+                set_lim(c[axis] - r, c[axis] + r)
+            ax.view_init(elev=elev, azim=azim)
+            ax.set_box_aspect((1, 1, 1))
+            ax.set_axis_off()
+            if j == 0:
+                ax.set_title(f"{label}, t = {time:.3g}", fontsize=9)
+    ax = fig.add_subplot(2, 3, 3)
+    lines = []
+    for (label, tri, pos, time, ub, area), lg in zip(runs, logs):
+        ub_int = float((ub * area).sum())
+        share = concentration(ub, area)
+        ax.hist(lg, bins=40, weights=area / area.sum(), histtype="step", label=label)
+        lines.append(f"{label}: integral of U_b over the area = {ub_int:.4g}, share of E_b in the top 10 % of area = {share:.2f}")
+    ax.set_xlabel(r"$\log_{10} U_b$ per face")
+    ax.set_ylabel("area fraction")
+    ax.legend(fontsize=7)
+    ax = fig.add_subplot(2, 3, 6)
+    for label, tri, pos, time, ub, area in runs:
+        order = np.argsort(-ub)
+        ax.plot(np.cumsum(area[order]) / area.sum(), np.cumsum((ub * area)[order]) / (ub * area).sum(),
+                label=label)
+    ax.plot([0, 1], [0, 1], "k:", lw=0.8, label="uniform")
+    ax.set_xlabel("area fraction, most strained first")
+    ax.set_ylabel("share of bending energy")
+    ax.legend(fontsize=7)
+    sm = plt.cm.ScalarMappable(norm=norm, cmap="viridis")
+    fig.colorbar(sm, ax=fig.axes[:4], shrink=0.5, label=r"$\log_{10} U_b$")
+    fig.savefig(args.out, dpi=110)
+    for line in lines:
+        print(line)
+    print(f"wrote {args.out}")
+
+
 def branches(args):
     with open(args.csv) as f:
         rows = list(csv.DictReader(f))
@@ -169,11 +243,17 @@ def main():
     e.add_argument("--kiss", type=float, help="first-contact angle to mark (the deck's bisection)")
     s = sub.add_parser("sphere")
     s.add_argument("files", nargs="+", help="one or two CSV files, then the output PNG")
+    m = sub.add_parser("sphere-maps")
+    m.add_argument("shrink")
+    m.add_argument("grow")
+    m.add_argument("out")
+    m.add_argument("--frame", type=int, default=-1)
     b = sub.add_parser("branches")
     b.add_argument("csv")
     b.add_argument("out")
     args = p.parse_args()
-    {"render": render, "econe": econe, "sphere": sphere, "branches": branches}[args.cmd](args)
+    {"render": render, "econe": econe, "sphere": sphere, "sphere-maps": sphere_maps,
+     "branches": branches}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -25,6 +25,10 @@ local shell = {mesh = "disc", thickness = h, young = young, poisson = poisson, b
 if mode == "grow" then
   sim:growth("g", "isotropic", {rate = tau})
   shell.growth = "g"
+  -- integrate over the grown area (det G): the thesis' default leaves it out, which for
+  -- this uniform growth scales E_b by 1 / (1 + tau t)^2 and would bias the comparison of
+  -- the two runs' energies at equal f (MODELS.md §6.3 [R])
+  shell.growth_area_factor = true
 end
 sim:shell("koiter", shell)
 sim:pair("contact/shell", {mesh = "disc", thickness = h, young = young, dense = "all"})
@@ -61,12 +65,14 @@ for k = 1, samples do
   eb_first = eb_first or sim:value("koiter.bend")
   csv:write(table.concat(row, ",") .. "\n")
   csv:flush()
+  -- one surface frame per sample: the shrink and grow runs have the same f at frame k,
+  -- so their U_b maps can be compared frame by frame (shell_plots.py sphere-maps)
+  sim:write_dump("surface")
   print(string.format("f %.3f  E_b %.4e  E_s/E_b %.3f  self-contacts %d  wall contacts %d  dt %.3g",
                       f, sim:value("koiter.bend"), sim:value("koiter.stretch") / sim:value("koiter.bend"),
                       sim:value("contact/shell.contacts"), sim:value("sphere.contacts"), sim:dt()))
 end
 csv:close()
-sim:write_dump("surface")
 local plots = require("lib.plots")
 plots.run("sphere", out .. "/sphere.csv", out .. "/sphere.png")
 plots.run("render", out .. "/surface.h5", out .. "/shape.png")

@@ -635,17 +635,46 @@ void Simulation::write_thermo(bool header) {
     if (!thermo_csv_.is_open()) {
       bool has_content = false;
       if (thermo.append) {
-        std::ifstream old(thermo.file);
-        has_content = old && old.peek() != std::ifstream::traits_type::eof();
-        std::string line, last;
-        while (std::getline(old, line))
-          if (!line.empty()) last = line;
-        if (has_content && by_step && last.rfind("step", 0) != 0) {
-          try {
-            thermo_last_step_ = std::stod(last.substr(0, last.find(',')));
-          } catch (const std::exception&) {
-            thermo_last_step_ = -1;
+        std::vector<std::string> lines;
+        {
+          std::ifstream old(thermo.file);
+          std::string line;
+          while (std::getline(old, line))
+            if (!line.empty()) lines.push_back(line);
+        }
+        has_content = !lines.empty();
+        if (has_content && by_step) {
+          auto step_of = [](const std::string& row, double* out) {
+            if (row.rfind("step", 0) == 0) return false;  // the header
+            try {
+              *out = std::stod(row.substr(0, row.find(',')));
+              return true;
+            } catch (const std::exception&) {
+              return false;
+            }
+          };
+          // A restart from a checkpoint redoes the steps the interrupted run went on to
+          // after it: drop their rows, so the file stays one row per step, in order.
+          size_t keep = lines.size();
+          double st = 0.0;
+          while (keep > 0 && step_of(lines[keep - 1], &st) && st >= vals[0]) --keep;
+          if (keep < lines.size()) {
+            const std::string tmp = thermo.file + ".tmp";
+            {
+              std::ofstream out(tmp, std::ios::out | std::ios::trunc);
+              for (size_t i = 0; i < keep; ++i) out << lines[i] << "\n";
+              if (!out) throw InputError("cannot rewrite thermo file '" + thermo.file + "'");
+            }
+            if (std::rename(tmp.c_str(), thermo.file.c_str()) != 0)
+              throw InputError("cannot replace thermo file '" + thermo.file + "'");
+            if (verbose)
+              std::printf("thermo: dropped %zu rows of %s from step %.0f on (written after the "
+                          "checkpoint this run continues from; they are redone)\n",
+                          lines.size() - keep, thermo.file.c_str(), vals[0]);
+            lines.resize(keep);
           }
+          has_content = !lines.empty();
+          if (!lines.empty() && !step_of(lines.back(), &thermo_last_step_)) thermo_last_step_ = -1;
         }
       }
       thermo_csv_.open(thermo.file, thermo.append ? std::ios::out | std::ios::app

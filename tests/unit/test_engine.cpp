@@ -249,7 +249,7 @@ TEST(StableDt, AutoUsesTheIntegratorLimit) {
 
 // A run that continues where the last one ended, in the same scene or appending to the
 // file of a restarted one, does not repeat the row of the step it starts from.
-TEST(Thermo, ContinuedRunsWriteEachStepOnce) {
+TEST(Thermo, ContinuedRunsWriteEachStepOnceAndInOrder) {
   auto make = [](bool append) {
     auto s = std::make_unique<Simulation>(2, 9);
     s->verbose = false;
@@ -283,6 +283,14 @@ TEST(Thermo, ContinuedRunsWriteEachStepOnce) {
     b->run(RunOptions{10, 0, {}});
   }
   EXPECT_EQ(steps_in_file(), (std::vector<long>{0, 5, 10, 15, 20, 25, 30}));
+  {
+    // a restart from an older checkpoint (step 10): the rows the first run wrote after
+    // it are redone, not repeated out of order
+    auto c = make(true);
+    c->step = 10;
+    c->run(RunOptions{5, 0, {}});
+  }
+  EXPECT_EQ(steps_in_file(), (std::vector<long>{0, 5, 10, 15}));
   std::remove("thermo_once.csv");
 }
 

@@ -8,7 +8,12 @@
 - the distribution of the per-node bending energy x = E_i / <E> in the last frame
   of the trajectory (nodes inside the sphere, logarithmic bins) with a log-normal fit
   (4.49) by maximum likelihood (mu = mean ln x, sigma = std ln x), and the
-  Kolmogorov-Smirnov distance of the fit.
+  Kolmogorov-Smirnov distance of the fit;
+- the strand spacing d_s measured from cross-sections (MODELS.md §7.2 W3-5): the
+  rod cut by planes through the feed axis (z), and in each plane the distance from
+  every strand's section to its nearest other section and the mean distance to its six
+  nearest; in the hexagonal packing of the inverse-spool model both are d_s (the
+  thesis measured 2.81 a).
 
   /usr/bin/python3 scripts/pack3d_stats.py low_torsion_thermo.csv low_torsion.h5 --R 10 --out docs/pack3d/low_torsion_R10
 """
@@ -45,6 +50,42 @@ def lognormal_fit(x):
     cdf = 0.5 * (1 + np.array([math.erf((v - mu) / (sigma * math.sqrt(2))) for v in xs]))
     ks = float(np.max(np.maximum(np.abs(emp - cdf), np.abs(emp - 1 / len(xs) - cdf))))
     return mu, sigma, ks
+
+
+def strand_spacing(pos, edges, R, planes=12, exclude=3, margin=3.0):
+    """Distances between the sections of the rod in `planes` planes through the z axis
+    (the feed axis), inside the sphere of radius R. Sections of edges fewer than
+    `exclude` apart along the chain are not neighbours (a strand lying in the plane
+    crosses it several times in a row). Returns, for the sections more than `margin`
+    from the sphere, the distance to the nearest other section and the mean distance
+    to the six nearest: both are d_s in the hexagonal packing of the inverse spool;
+    in a real packing the first is the contact distance of the closest pair and the
+    second also sees the gaps around a strand."""
+    pos = np.asarray(pos, float)
+    edges = np.asarray(edges, int)
+    xa, xb = pos[edges[:, 0]], pos[edges[:, 1]]
+    inside = (np.linalg.norm(xa, axis=1) < R) & (np.linalg.norm(xb, axis=1) < R)
+    index = np.arange(len(edges))
+    nearest, six = [], []
+    for th in np.pi * np.arange(planes) / planes:
+        n = np.array([np.cos(th), np.sin(th), 0.0])
+        u = np.array([-np.sin(th), np.cos(th), 0.0])
+        sa, sb = xa @ n, xb @ n
+        cut = inside & (sa * sb < 0)
+        if cut.sum() < 7:
+            continue
+        t = sa[cut] / (sa[cut] - sb[cut])
+        p = xa[cut] + t[:, None] * (xb[cut] - xa[cut])
+        pts = np.stack([p @ u, p[:, 2]], axis=1)
+        k = index[cut]
+        d = np.linalg.norm(pts[:, None, :] - pts[None, :, :], axis=2)
+        d[np.abs(k[:, None] - k[None, :]) < exclude] = np.inf
+        d.sort(axis=1)
+        deep = np.linalg.norm(pts, axis=1) < R - margin
+        ok = deep & np.isfinite(d[:, 5])
+        nearest.extend(d[ok, 0])
+        six.extend(d[ok, :6].mean(axis=1))
+    return np.array(nearest), np.array(six)
 
 
 def main():
@@ -96,6 +137,26 @@ def main():
         with h5py.File(a.trajectory, "r") as h:
             pos = h["particles/all/position/value"][-1]
             e = np.asarray(h["particles/all/bend.energy/value"][-1]).reshape(-1)
+            edges = (h["connectivity/edges/value"][-1] if "connectivity/edges" in h
+                     else np.stack([np.arange(len(pos) - 1), np.arange(1, len(pos))], axis=1))
+        nn, six = strand_spacing(pos, edges, a.R, margin=3 * a.a)
+        nn, six = nn / a.a, six / a.a
+        if len(nn):
+            summary.update({"strand_nearest_median_over_a": float(np.median(nn)),
+                            "strand_six_nearest_median_over_a": float(np.median(six)),
+                            "strand_sections": int(len(nn))})
+            fig, ax = plt.subplots(figsize=(5, 4))
+            bins = np.linspace(0, max(6.0, np.percentile(six, 99)), 40)
+            ax.hist(nn, bins=bins, histtype="step", label=f"nearest: median {np.median(nn):.2f} a")
+            ax.hist(six, bins=bins, histtype="step", label=f"six nearest (mean): median {np.median(six):.2f} a")
+            ax.axvline(2.81, color="r", ls=":", label="thesis d_s = 2.81 a")
+            ax.axvline(2.0, color="0.5", ls="--", label="touching, 2 a")
+            ax.set_xlabel("distance between strand sections / a")
+            ax.set_ylabel(f"sections ({len(nn)} in 12 planes through the feed axis)")
+            ax.legend(fontsize=7)
+            fig.tight_layout()
+            fig.savefig(a.out + "_strand_spacing.png", dpi=110)
+            plt.close(fig)
         inside = np.linalg.norm(pos, axis=1) < a.R
         e = e[inside & (e > 0)]
         x = e / e.mean()

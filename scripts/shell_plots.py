@@ -15,10 +15,11 @@
       at the same frame (the decks write one per sample, at equal f): both shapes on
       one colour scale, the area-weighted distribution of U_b, and how much of E_b
       sits in the most strained tenth of the area (printed too)
-  shell_plots.py branches BRANCHES.csv OUT.png
+  shell_plots.py branches BRANCHES.csv OUT.png [--extra LABEL=ECONE.csv ...]
       the S-2 stability run (econe_stability.lua): E_b_hat and gamma against phi_e
       on the symmetric branch held by friction, the skewed branch, and the release
-      tests
+      tests; --extra overlays e-cone ramps (econe.lua logs), e.g. the companion
+      runs without contact and from the n = 3 mode
 """
 import argparse
 import csv
@@ -219,6 +220,13 @@ def branches(args):
         axes[0].plot(phi, eb, style, ms=5, label=label)
         ok = gam >= 0
         axes[1].plot(phi[ok], np.degrees(gam[ok]), style, ms=5, label=label)
+    for extra in args.extra or []:
+        label, _, path = extra.partition("=")
+        d = read_csv(path)
+        axes[0].plot(d["phi_e"], d["Eb_hat"], "--", lw=1.2, label=label)
+        ok = d["gamma"] >= 0
+        if ok.any():
+            axes[1].plot(d["phi_e"][ok], np.degrees(d["gamma"][ok]), "--", lw=1.2, label=label)
     axes[0].set_ylabel(r"$\hat E_b$")
     axes[1].set_ylabel(r"contact-plane angle $\gamma$ (deg)")
     for ax in axes:
@@ -251,6 +259,7 @@ def main():
     b = sub.add_parser("branches")
     b.add_argument("csv")
     b.add_argument("out")
+    b.add_argument("--extra", action="append", help="LABEL=econe.csv: an e-cone ramp to overlay")
     args = p.parse_args()
     {"render": render, "econe": econe, "sphere": sphere, "sphere-maps": sphere_maps,
      "branches": branches}[args.cmd](args)

@@ -28,6 +28,22 @@ def main():
     rng = np.random.default_rng(1)
     mu, sigma, ks = pack3d_stats.lognormal_fit(np.exp(rng.normal(-0.3, 0.8, 20000)))
     assert abs(mu + 0.3) < 0.02 and abs(sigma - 0.8) < 0.02 and ks < 0.02, (mu, sigma, ks)
+    # strand spacing from cross-sections: hoops round the z axis on a hexagonal lattice
+    # of spacing d_s in (r, z) (the inverse spool) give nearest sections d_s apart
+    ds, R, pos, edges = 2.81, 30.0, [], []
+    for i in range(12):
+        for j in range(-12, 13):
+            r = 1.5 + i * math.sqrt(3) / 2 * ds
+            z = (j + 0.5 * (i % 2)) * ds
+            if r * r + z * z > (R - 0.5) ** 2:
+                continue
+            first = len(pos)
+            ang = np.linspace(0, 2 * np.pi, 600, endpoint=False)
+            pos.extend(np.stack([r * np.cos(ang), r * np.sin(ang), np.full_like(ang, z)], axis=1))
+            edges.extend((first + m, first + (m + 1) % 600) for m in range(600))
+    nn, six = pack3d_stats.strand_spacing(np.array(pos), np.array(edges), R=R, planes=3, margin=3.0)
+    assert len(nn) > 300 and abs(np.median(nn) - ds) < 0.01, (len(nn), np.median(nn))
+    assert abs(np.median(six) - ds) < 0.01, np.median(six)
     print("pack3d scripts: ok")
 
 

@@ -326,6 +326,15 @@ double Simulation::potential_energy() const {
 double Simulation::max_force() const {
   double m = 0.0;
   for (size_t i = 0; i < nodes_.n_owned(); ++i) m = std::max(m, nodes_.f[i].norm());
+  // rod frames: the generalised force on each free quaternion, tangent to |q| = 1 (its
+  // radial part does no work); FIRE has not converged while the frames still turn
+  for (auto& c : coords_)
+    for (size_t i = 0; i < nodes_.n_owned(); ++i) {
+      if ((*c->fixed)[i]) continue;
+      const Vec4& q = (*c->q)[i];
+      const Vec4& f = (*c->f)[i];
+      m = std::max(m, (c->unit ? Vec4(f - f.dot(q) * q) : f).norm());
+    }
   return m;
 }
 
@@ -668,9 +677,10 @@ void Simulation::write_thermo(bool header) {
             if (std::rename(tmp.c_str(), thermo.file.c_str()) != 0)
               throw InputError("cannot replace thermo file '" + thermo.file + "'");
             if (verbose)
-              std::printf("thermo: dropped %zu rows of %s from step %.0f on (written after the "
-                          "checkpoint this run continues from; they are redone)\n",
-                          lines.size() - keep, thermo.file.c_str(), vals[0]);
+              std::printf(
+                  "thermo: dropped %zu rows of %s from step %.0f on (written after the "
+                  "checkpoint this run continues from; they are redone)\n",
+                  lines.size() - keep, thermo.file.c_str(), vals[0]);
             lines.resize(keep);
           }
           has_content = !lines.empty();
@@ -794,6 +804,8 @@ long Simulation::minimize(double ftol, long max_steps) {
     throw;
   }
   for (auto& v : nodes_.v) v.setZero();
+  for (auto& c : coords_)
+    for (auto& v : c->v->values()) v.setZero();
   ++state_epoch;
   integrator_ = std::move(saved);
   if (saved_dt > 0) dt = saved_dt;  // else keep FIRE's last step as the scene's dt

@@ -50,7 +50,9 @@ local function buckles(P)
   if model == "rod3d" then
     sim:bond("rod/straight", { YI = EI })  -- MODELS.md §3
   elseif model == "cosserat" then
-    local Ir = 1e-3 * h * h
+    -- rotational inertia per unit length, as a multiple of h^2: stability does not
+    -- depend on it (it is a static property), only the time the criterion takes
+    local Ir = slender.var("rot_inertia_factor", 1e-3) * h * h
     local kq = 4 * EA * h
     sim:bond("rod/cosserat", { YI = EI, GJ = EI / 1.33, coupling = EA, rot_inertia = Ir,
                                rot_damping = 2 * math.sqrt(kq * 4 * Ir * h) })
@@ -72,7 +74,7 @@ local function buckles(P)
   if integ == "fire" then
     ref.integrator(sim, integ, "auto")
     -- near the critical load the soft mode relaxes slowly; the step budget grows with N
-    sim:minimize { ftol = 1e-9, max_steps = 2000 * N }
+    sim:minimize { ftol = 1e-9, max_steps = slender.var("fire_steps", 2000) * N }
   else
     -- damped dynamics: once the other modes have decayed, the first mode's
     -- amplitude grows above the critical load and shrinks below it

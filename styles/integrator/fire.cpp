@@ -1,5 +1,8 @@
 // FIRE energy minimiser (Bitzek et al. 2006, with the FIRE 2.0 ordering): damped
 // dynamics whose velocity is steered along the force, with an adaptive step.
+// Generalised coordinates (rod quaternions) move with the nodes: one power test for
+// all, but each family is steered along its own force with its own norms, since a
+// quaternion's velocity and force are not in the units of a node's.
 #include <cmath>
 
 #include "registry.hpp"
@@ -36,10 +39,6 @@ class FireIntegrator : public IntegratorStyle {
   }
   double stability_limit() const override { return 2.0; }
   void setup(Simulation& sim) override {
-    if (!sim.extra_coordinates().empty())
-      throw InputError("integrator 'fire' (and sim:minimize) does not move the rod quaternions ('" +
-                       sim.extra_coordinates().front()->name +
-                       "'); use verlet or gear with damping to relax such a scene");
     if (initialized_) {
       sim.dt = h_;
       return;
@@ -57,8 +56,20 @@ class FireIntegrator : public IntegratorStyle {
   void step(Simulation& sim) override {
     auto& n = sim.nodes();
     const size_t N = n.n_owned();
+    auto& cs = sim.extra_coordinates();
+    // a quaternion's force counts only along |q| = 1: its radial part does no work
+    for (auto& c : cs)
+      if (c->unit)
+        for (size_t i = 0; i < N; ++i) {
+          Vec4& f = (*c->f)[i];
+          f -= f.dot((*c->q)[i]) * (*c->q)[i];
+        }
+    auto free = [](const Coordinates& c, size_t i) { return !(*c.fixed)[i]; };
     double P = 0.0;
     for (size_t i = 0; i < N; ++i) P += n.f[i].dot(n.v[i]);
+    for (auto& c : cs)
+      for (size_t i = 0; i < N; ++i)
+        if (free(*c, i)) P += (*c->f)[i].dot((*c->v)[i]);
     // P = 0 (at rest, e.g. right after a reset) is not uphill
     if (P >= 0) {
       if (++npos_ > nmin_) {
@@ -73,6 +84,13 @@ class FireIntegrator : public IntegratorStyle {
         n.x[i] -= 0.5 * h_ * n.v[i];
         n.v[i].setZero();
       }
+      for (auto& c : cs)
+        for (size_t i = 0; i < N; ++i)
+          if (free(*c, i)) {
+            (*c->q)[i] -= 0.5 * h_ * (*c->v)[i];
+            (*c->v)[i].setZero();
+            if (c->unit) c->constrain(i, {});
+          }
     }
     sim.dt = h_;
     double vnorm = 0.0, fnorm = 0.0;
@@ -87,6 +105,23 @@ class FireIntegrator : public IntegratorStyle {
     for (size_t i = 0; i < N; ++i) {
       n.v[i] = (1.0 - alpha_) * n.v[i] + mix * n.f[i];
       n.x[i] += h_ * n.v[i];
+    }
+    for (auto& c : cs) {
+      double vq = 0.0, fq = 0.0;
+      for (size_t i = 0; i < N; ++i)
+        if (free(*c, i)) {
+          (*c->v)[i] += (h_ / (*c->m)[i]) * (*c->f)[i];
+          vq += (*c->v)[i].squaredNorm();
+          fq += (*c->f)[i].squaredNorm();
+        }
+      const double mq = fq > 0 ? alpha_ * std::sqrt(vq / fq) : 0.0;
+      for (size_t i = 0; i < N; ++i)
+        if (free(*c, i)) {
+          Vec4& v = (*c->v)[i];
+          v = (1.0 - alpha_) * v + mq * (*c->f)[i];
+          (*c->q)[i] += h_ * v;
+          if (c->unit) c->constrain(i, {&v});
+        }
     }
     sim.compute_forces();
     sim.end_of_step();

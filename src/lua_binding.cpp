@@ -16,6 +16,7 @@
 
 #include "registry.hpp"
 #include "simulation.hpp"
+#include "stiffness.hpp"
 
 namespace slender {
 
@@ -211,8 +212,22 @@ ParamSpec run_spec() {
 
 ParamSpec minimize_spec() {
   ParamSpec s("command", "minimize", "sim:minimize{...}: FIRE relaxation to static equilibrium");
-  s.real("ftol", "stop when the largest nodal force is below this").def(1e-8).positive();
+  s.real("ftol",
+         "stop when the largest nodal force (and rod-frame generalised force) is below this")
+      .def(1e-8)
+      .positive();
   s.integer("max_steps", "give up after this many steps").def(1e6).min(1);
+  return s;
+}
+
+ParamSpec stiffness_spec() {
+  ParamSpec s(
+      "command", "lowest_stiffness",
+      "sim:lowest_stiffness{...}: lowest eigenvalue of the stiffness matrix (Hessian of "
+      "the energy) at the current state, by central differences of the forces; negative: "
+      "the equilibrium is unstable; free modes (a rigid motion, a free rod end's twist) sit "
+      "at zero within the difference error. Returns it and the degrees of freedom");
+  s.real("eps", "finite-difference step (length; frames: quaternion units)").def(1e-6).positive();
   return s;
 }
 
@@ -254,7 +269,7 @@ ParamSpec mesh_spec() {
 // docs/styles.md describe them from the same declarations that validate decks.
 [[maybe_unused]] const bool commands_registered = [] {
   for (auto* spec : {&simulation_spec, &wire_spec, &group_spec, &thermo_spec, &guard_spec,
-                     &run_spec, &minimize_spec, &mesh_spec}) {
+                     &run_spec, &minimize_spec, &stiffness_spec, &mesh_spec}) {
     ParamSpec s = (*spec)();
     Catalog::entries().push_back(CatalogEntry{"command", s.name, *spec});
   }
@@ -651,6 +666,15 @@ int l_minimize(lua_State* L) {
   return 2;
 }
 
+int l_lowest_stiffness(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto p = stiffness_spec().validate(to_raw(L, 2));
+  const StiffnessResult r = lowest_stiffness(sim, p.real("eps"));
+  lua_pushnumber(L, r.lowest);
+  lua_pushinteger(L, r.dofs);
+  return 2;
+}
+
 int l_write_dump(lua_State* L) {
   Simulation& sim = sim_arg(L);
   const std::string id = str_arg(L, 2, "the dump id");
@@ -859,6 +883,7 @@ const luaL_Reg kSimMethods[] = {SLENDER_METHOD("wire", l_wire),
                                 SLENDER_METHOD("guard", l_guard),
                                 SLENDER_METHOD("run", l_run),
                                 SLENDER_METHOD("minimize", l_minimize),
+                                SLENDER_METHOD("lowest_stiffness", l_lowest_stiffness),
                                 SLENDER_METHOD("value", l_value),
                                 SLENDER_METHOD("write_dump", l_write_dump),
                                 SLENDER_METHOD("position", l_position),

@@ -7,6 +7,7 @@
 
 #include "helpers.hpp"
 #include "registry.hpp"
+#include "stiffness.hpp"
 #ifdef SLENDER_HAVE_HDF5
 #include "h5util.hpp"
 #endif
@@ -363,3 +364,45 @@ TEST(Checkpoint, RestartIsBitIdenticalAndRejectsOtherScenes) {
   std::remove("test_ck.h5");
 }
 #endif
+
+// lowest_stiffness (src/stiffness.cpp): the lowest eigenvalue of the difference
+// Hessian. A string of stiffness k pulled by F has transverse stiffness F / l at its
+// loaded end (and k along it); pushed, -|F| / l: a compressed string is unstable.
+TEST(LowestStiffness, StringUnderTensionAndCompression) {
+  for (double F : {0.5, -0.5}) {
+    Simulation sim(2, 1);
+    sim.verbose = false;
+    sim.add_chain("s", {Vec3(0, 0, 0), Vec3(2, 0, 0)}, 1.0, false);
+    sim.add_bond("spring", P({{"k", 10.0}}));
+    sim.set_group("root", {0});
+    sim.set_group("tip", {1});
+    sim.add_fix("root", "clamp", P({{"group", std::string("root")}}));
+    sim.add_fix("pull", "force/constant",
+                P({{"group", std::string("tip")}, {"force", std::vector<double>{F, 0.0}}}));
+    sim.set_integrator("verlet", P({{"dt", 0.01}}));
+    sim.minimize(1e-12, 100000);
+    const double l = sim.nodes().x[1].x();
+    EXPECT_NEAR(l, 2.0 + F / 10.0, 1e-10);
+    const StiffnessResult r = lowest_stiffness(sim, 1e-6);
+    EXPECT_EQ(r.dofs, 2);  // the clamped node's components are not degrees of freedom
+    EXPECT_NEAR(r.lowest, F / l, 1e-6) << F;
+    EXPECT_NEAR(sim.nodes().x[1].x(), l, 1e-15);  // the state is restored
+  }
+}
+
+// A free, straight, untwisted Cosserat rod: rigid motions and a common twist of the
+// frames are free (eigenvalue zero), nothing is negative; frames add three tangent
+// degrees of freedom each.
+TEST(LowestStiffness, FreeCosseratRodHasZeroModesOnly) {
+  Simulation sim(3, 1);
+  sim.verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 6; ++i) pts.emplace_back(0.5 * i, 0.1 * i, 0);
+  sim.add_chain("r", pts, 1.0, false);
+  sim.add_bond("spring", P({{"k", 100.0}}));
+  sim.add_bond("rod/cosserat",
+               P({{"YI", 2.0}, {"GJ", 1.5}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
+  const StiffnessResult r = lowest_stiffness(sim, 1e-6);
+  EXPECT_EQ(r.dofs, 6 * 3 + 5 * 3);
+  EXPECT_NEAR(r.lowest, 0.0, 1e-7);
+}

@@ -226,7 +226,8 @@ ParamSpec stiffness_spec() {
       "sim:lowest_stiffness{...}: lowest eigenvalue of the stiffness matrix (Hessian of "
       "the energy) at the current state, by central differences of the forces; negative: "
       "the equilibrium is unstable; free modes (a rigid motion, a free rod end's twist) sit "
-      "at zero within the difference error. Returns it and the degrees of freedom");
+      "at zero within the difference error. Returns it and the degrees of freedom. "
+      "Friction springs advance with each force evaluation: use it without friction");
   s.real("eps", "finite-difference step (length; frames: quaternion units)").def(1e-6).positive();
   return s;
 }

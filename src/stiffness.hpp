@@ -18,7 +18,8 @@ struct StiffnessResult {
 // it moves (a clamp) is dropped. Free modes (a rigid motion, the twist of a free rod
 // end) have eigenvalue zero up to the error of the differences (about 1e-10 in the
 // buckling deck): test instability against a small negative tolerance in the units of
-// the problem. The state is restored on return.
+// the problem. The state is restored on return, except the friction springs of contact
+// pairs and walls, which advance with every force evaluation: use it without friction.
 StiffnessResult lowest_stiffness(Simulation& sim, double eps);
 
 }  // namespace slender

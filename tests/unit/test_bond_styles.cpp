@@ -1,5 +1,6 @@
 // Unit tests of the bond styles: spring and bend2d.
 #include <cmath>
+#include <random>
 
 #include "helpers.hpp"
 
@@ -145,4 +146,51 @@ TEST(BendStyles, DashpotDissipatesGammaTimesTurningRateSquared) {
     for (int i = 0; i < 3; ++i) sum += with->nodes().f[i] - without->nodes().f[i];
     EXPECT_LT(sum.norm(), 1e-12) << style;
   }
+}
+
+// bond "damper" (styles/bond/damper.cpp): internal damping between neighbours.
+TEST(DamperBond, LeavesRigidMotionAndSlidingFreeAndDissipates) {
+  Simulation sim(3, 1);
+  sim.add_chain("w", wiggly_chain(9, 3, 5), 1.0, false);
+  sim.add_bond("damper", P({{"gamma", 2.0}}));
+  auto& v = sim.nodes().v;
+  // a rigid translation: no force
+  for (auto& vi : v) vi = Vec3(0.3, -0.2, 0.7);
+  sim.compute_forces();
+  for (auto& f : sim.nodes().f) EXPECT_LT(f.norm(), 1e-14);
+  EXPECT_EQ(sim.potential_energy(), 0.0);
+  // any motion: the forces sum to zero and their power is -gamma sum |v_a - v_b|^2
+  std::mt19937 g(3);
+  std::normal_distribution<double> n(0, 1);
+  for (auto& vi : v) vi = Vec3(n(g), n(g), n(g));
+  sim.compute_forces();
+  Vec3 total = Vec3::Zero();
+  double power = 0.0, expected = 0.0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    total += sim.nodes().f[i];
+    power += sim.nodes().f[i].dot(v[i]);
+  }
+  for (size_t i = 0; i + 1 < v.size(); ++i) expected -= 2.0 * (v[i] - v[i + 1]).squaredNorm();
+  EXPECT_LT(total.norm(), 1e-12);
+  EXPECT_NEAR(power, expected, 1e-12 * std::abs(expected));
+}
+
+TEST(DamperBond, StraightChainSlidingAlongItselfFeelsNoForce) {
+  // unlike damping/viscous, which pulls gamma v back on every node
+  Simulation sim(3, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 6; ++i) pts.emplace_back(0, 0, -1.0 * i);
+  sim.add_chain("r", pts, 1.0, false);
+  sim.add_bond("damper", P({{"gamma", 5.0}}));
+  for (auto& vi : sim.nodes().v) vi = Vec3(0, 0, -0.03);
+  sim.compute_forces();
+  for (auto& f : sim.nodes().f) EXPECT_EQ(f.norm(), 0.0);
+  Simulation drag(3, 1);
+  drag.add_chain("r", pts, 1.0, false);
+  drag.add_fix("drag", "damping/viscous", P({{"gamma", 5.0}}));
+  for (auto& vi : drag.nodes().v) vi = Vec3(0, 0, -0.03);
+  drag.compute_forces();
+  Vec3 sum = Vec3::Zero();
+  for (auto& f : drag.nodes().f) sum += f;
+  EXPECT_NEAR(sum.z(), 6 * 5.0 * 0.03, 1e-12);  // grows with the chain's length
 }

@@ -47,7 +47,19 @@ function M.build(p)
   sim:fix("sphere", "wall/sphere", { radius = R, diameter = 2 * a, stiffness = estar, exponent = 1,
                                      damping = dc, mu_static = mu_s, mu_dynamic = mu_d,
                                      stick_stiffness = 0.1 * estar })
-  sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(YA / l0 * m) })
+  -- -v damping=viscous (default): drag 0.01 sqrt(k1 m) on absolute velocities; it resists
+  -- the rod sliding along itself with gamma v per node, so it adds N gamma v to the
+  -- injection force (F R^2 / YI ~ R^5: 0.2 at R = 6, 1-3 at R = 10, the stop value 20
+  -- at R = 20 before the sphere is 5 % full). -v damping=internal: bond damper on the
+  -- relative velocity of neighbours (-v drag= scales either)
+  local damping = slender.var("damping", "viscous")
+  if damping == "internal" then
+    sim:bond("damper", { gamma = slender.var("drag", 0.1) * math.sqrt(YA / l0 * m) })
+  elseif damping == "viscous" then
+    sim:fix("drag", "damping/viscous", { gamma = slender.var("drag", 0.01) * math.sqrt(YA / l0 * m) })
+  else
+    error("damping must be viscous or internal, got " .. tostring(damping))
+  end
   sim:fix("feed", "inject/wire", { chain = "rod", radius = R, center = { 0, 0, 0 }, channels = "nozzle",
     direction = { 0, 0, -1 }, speed = speed, diameter = 2 * a, rotation = p.rotation or "free",
     perturb = slender.var("perturb", 0.01 * a),

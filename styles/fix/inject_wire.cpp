@@ -64,6 +64,11 @@ class WireInjectionFix : public FixStyle {
         .nonnegative();
     s.real("jam_dphi", "... within this increase of the packing density").def(0.005).positive();
     s.real("max_phi", "stop at this packing density").def(1.0).positive();
+    s.real("jam_min_phi",
+           "the jamming tests apply only above this packing density (the straight wire's first "
+           "hit of the far wall is not a jam)")
+        .def(0.0)
+        .nonnegative();
     s.real("perturb",
            "random transverse displacement (seeded) given to each node as the channel releases "
            "it: the wire entering a cavity is never perfectly straight, so it cannot hit the far "
@@ -84,6 +89,7 @@ class WireInjectionFix : public FixStyle {
         growth_(p.real("jam_growth")),
         dphi_(p.real("jam_dphi")),
         max_phi_(p.real("max_phi")),
+        min_phi_(p.real("jam_min_phi")),
         hold_rotation_(p.str("rotation") == "held"),
         perturb_(p.real("perturb")) {
     dim_ = sim.dimension();
@@ -196,7 +202,9 @@ class WireInjectionFix : public FixStyle {
       history_.pop_front();
     }
     avg_ = sum_ / static_cast<double>(history_.size());
-    if (static_cast<long>(history_.size()) < window_) return;
+    if (phi_ >= max_phi_)
+      sim.request_stop("packing density reached max_phi = " + std::to_string(max_phi_));
+    if (static_cast<long>(history_.size()) < window_ || phi_ < min_phi_) return;
     if (avg_ > jam_force_) {
       jammed_ = 1;
       sim.request_stop("jammed: injection force " + std::to_string(avg_) +
@@ -211,8 +219,6 @@ class WireInjectionFix : public FixStyle {
             "-fold within dphi = " + std::to_string(dphi_) + " at phi = " + std::to_string(phi_));
       }
     }
-    if (phi_ >= max_phi_)
-      sim.request_stop("packing density reached max_phi = " + std::to_string(max_phi_));
   }
 
   std::vector<std::string> value_keys() const override {
@@ -335,7 +341,7 @@ class WireInjectionFix : public FixStyle {
   double v_, d_, jam_force_;
   int dim_ = 2;
   long window_;
-  double growth_, dphi_, max_phi_;
+  double growth_, dphi_, max_phi_, min_phi_;
   bool hold_rotation_ = false;
   double perturb_ = 0.0;
   Property<int>* held_ = nullptr;  // rod.q.fixed: the frames the channel prescribes

@@ -84,6 +84,38 @@ TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
   EXPECT_NE(sim->stop_reason().find("jammed"), std::string::npos) << sim->stop_reason();
 }
 
+TEST(WireInjectionFix, JamTestsWaitForTheirPackingDensity) {
+  // one channel: the wire slides through the cavity at a constant packing density
+  // (20 / (100 pi) = 0.064), and its drag (about 0.6) passes jam_force = 0.1 at once;
+  // with jam_min_phi above that density the run is never stopped
+  auto run = [](double min_phi) {
+    auto sim = std::make_unique<Simulation>(2, 1);
+    sim->verbose = false;
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 25; ++i) pts.emplace_back(-12.0 + i, 0, 0);
+    sim->add_chain("wire", pts, 1.0, false);
+    sim->add_bond("spring", P({{"k", 1000.0}}));
+    sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
+    sim->add_fix("feed", "inject/wire",
+                 P({{"chain", std::string("wire")},
+                    {"radius", 10.0},
+                    {"speed", 0.05},
+                    {"channels", std::string("left")},
+                    {"jam_force", 0.1},
+                    {"jam_window", 100.0},
+                    {"jam_min_phi", min_phi}}));
+    sim->set_integrator("gear", P({{"dt", 0.002}}));
+    sim->run(RunOptions{20000, 0, {}});
+    return std::make_pair(sim->fix("feed").value("jammed"), sim->step);
+  };
+  const auto early = run(0.06);
+  EXPECT_EQ(early.first, 1.0);
+  EXPECT_LT(early.second, 1000);
+  const auto never = run(0.07);
+  EXPECT_EQ(never.first, 0.0);
+  EXPECT_EQ(never.second, 20000);
+}
+
 TEST(SphereWallFix, OpeningsLetTheWirePass) {
   Simulation sim(2, 1);
   // nodes across the rim at angle 0 (in the opening) and at angle pi/2 (not)

@@ -64,7 +64,11 @@ function M.build(p)
     direction = { 0, 0, -1 }, speed = speed, diameter = 2 * a, rotation = p.rotation or "free",
     perturb = slender.var("perturb", 0.01 * a),
     jam_force = slender.var("stop_force", math.max(0.01 * YA, 20 * YI / R ^ 2)), jam_window = 1000,
-    max_phi = slender.var("max_phi", 1.0) })
+    max_phi = slender.var("max_phi", 1.0),
+    -- -v jam_min_phi=: no stop below this density. The straight rod first crosses the
+    -- sphere at phi = 1.5 (a/R)^2; at R = 20 that head-on hit passes F_stop = 39 (the
+    -- run stopped at phi = 0.004), so R = 20 runs use 3 (a/R)^2
+    jam_min_phi = slender.var("jam_min_phi", 0.0) })
   sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
   sim:compute("count", "count", {})
   sim:compute("gyr", "gyration", { group = "rod", inside = R })

@@ -1,10 +1,8 @@
 // Internal (Kelvin-Voigt) damping along the chain: on every edge, -gamma (v_tail - v_head)
 // on the tail and the opposite on the head. It damps the relative motion of neighbours
 // (stretching and bending vibrations) and leaves a rod that slides along its own length
-// free. A drag on absolute velocities (fix damping/viscous) resists that sliding with
-// gamma v per node, so the force needed to feed a rod into a container grows with the
-// rod's length: in the 3D packing, at R = 10 a, that drag was a quarter to a half of the
-// measured injection force. Dissipative: no energy.
+// free, where a drag on absolute velocities (fix damping/viscous) resists the sliding
+// with gamma v per moving node. Dissipative: no energy.
 #include "chain_select.hpp"
 #include "registry.hpp"
 

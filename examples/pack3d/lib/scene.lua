@@ -47,11 +47,11 @@ function M.build(p)
   sim:fix("sphere", "wall/sphere", { radius = R, diameter = 2 * a, stiffness = estar, exponent = 1,
                                      damping = dc, mu_static = mu_s, mu_dynamic = mu_d,
                                      stick_stiffness = 0.1 * estar })
-  -- -v damping=viscous (default): drag 0.01 sqrt(k1 m) on absolute velocities; it resists
-  -- the rod sliding along itself with gamma v per node, so it adds N gamma v to the
-  -- injection force (F R^2 / YI ~ R^5: 0.2 at R = 6, 1-3 at R = 10, the stop value 20
-  -- at R = 20 before the sphere is 5 % full). -v damping=internal: bond damper on the
-  -- relative velocity of neighbours (-v drag= scales either)
+  -- -v damping=viscous (default): drag 0.01 sqrt(k1 m) on absolute velocities, which
+  -- also resists the rod sliding along itself (gamma v per moving node). -v
+  -- damping=internal: bond damper on the relative velocity of neighbours instead. At
+  -- R = 10 the injection force agrees within 0.1 in F R^2 / YI up to phi = 0.2: the packed
+  -- rod is mostly at rest, so the drag is a small part of the force. -v drag= scales either.
   local damping = slender.var("damping", "viscous")
   if damping == "internal" then
     sim:bond("damper", { gamma = slender.var("drag", 0.1) * math.sqrt(YA / l0 * m) })

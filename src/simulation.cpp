@@ -662,11 +662,12 @@ void Simulation::write_thermo(bool header) {
               return false;
             }
           };
-          // A restart from a checkpoint redoes the steps the interrupted run went on to
-          // after it: drop their rows, so the file stays one row per step, in order.
+          // A restart from a checkpoint (step > 0) redoes the steps the interrupted run
+          // went on to after it: drop their rows, so the file stays one row per step, in
+          // order. A new run from step 0 appends below the old one and drops nothing.
           size_t keep = lines.size();
           double st = 0.0;
-          while (keep > 0 && step_of(lines[keep - 1], &st) && st >= vals[0]) --keep;
+          while (vals[0] > 0 && keep > 0 && step_of(lines[keep - 1], &st) && st >= vals[0]) --keep;
           if (keep < lines.size()) {
             const std::string tmp = thermo.file + ".tmp";
             {

@@ -93,7 +93,7 @@ class SegmentContactPair : public PairStyle {
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
-    const double dt = sim.dt, reach = 2.0 * a_;
+    const double dt = sim.dt, reach = 2.0 * a_, reach2 = reach * reach;
     double energy = 0.0;
     contacts_ = 0;
     ContactLaw law = law_;
@@ -105,13 +105,15 @@ class SegmentContactPair : public PairStyle {
       const Vec3 p1 = x[e1.a] + s * (x[e1.b] - x[e1.a]);
       const Vec3 p2 = x[e2.a] + t * (x[e2.b] - x[e2.a]);
       const Vec3 d12 = p1 - p2;
-      const double dist = d12.norm();
-      if (dist >= reach || dist == 0.0) {
+      // most listed pairs are apart: test the squared distance before taking the root
+      const double dist2 = d12.squaredNorm();
+      if (dist2 >= reach2 || dist2 == 0.0) {
         c.st.active = false;
         c.st.stick = false;
         c.st.xi.setZero();
         continue;
       }
+      const double dist = std::sqrt(dist2);
       const Vec3 n = d12 / dist;
       const Vec3 vrel = ((1 - s) * v[e1.a] + s * v[e1.b]) - ((1 - t) * v[e2.a] + t * v[e2.b]);
       if (estar_per_length_ > 0) law.stiffness = estar_per_length_ * (e1.rest + e2.rest);

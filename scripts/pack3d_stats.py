@@ -13,9 +13,13 @@
   rod cut by planes through the feed axis (z), and in each plane the distance from
   every strand's section to its nearest other section and the mean distance to its six
   nearest; in the hexagonal packing of the inverse-spool model both are d_s (the
-  thesis measured 2.81 a).
+  thesis measured 2.81 a);
+- how ordered the last frame is (W3-1 against W3-2): the local nematic order of
+  neighbouring strands, the alignment of the rod with hoops round the feed axis, and
+  the density in a column round that axis against an even filling (packing_order).
 
   /usr/bin/python3 scripts/pack3d_stats.py low_torsion_thermo.csv low_torsion.h5 --R 10 --out docs/pack3d/low_torsion_R10
+  (a restarted run: list its dumps in order, low_torsion.h5 low_torsion_<time>.h5)
 """
 import argparse
 import csv
@@ -88,10 +92,82 @@ def strand_spacing(pos, edges, R, planes=12, exclude=3, margin=3.0):
     return np.array(nearest), np.array(six)
 
 
+def near_pairs(p, cutoff):
+    """Index pairs (i < j) of points closer than `cutoff`, by a cell list of that size."""
+    p = np.asarray(p, float)
+    cell = np.floor(p / cutoff).astype(np.int64)
+    keys, inverse = np.unique(cell, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    order = np.argsort(inverse, kind="stable")
+    start = np.searchsorted(inverse[order], np.arange(len(keys) + 1))
+    where = {tuple(k): c for c, k in enumerate(keys)}
+    offsets = [(i, j, k) for i in (-1, 0, 1) for j in (-1, 0, 1) for k in (-1, 0, 1)]
+    out_i, out_j = [], []
+    for c, key in enumerate(keys):
+        mine = order[start[c]:start[c + 1]]
+        for off in offsets:
+            o = where.get((key[0] + off[0], key[1] + off[1], key[2] + off[2]))
+            if o is None or o < c:
+                continue
+            other = order[start[o]:start[o + 1]]
+            d = np.linalg.norm(p[mine][:, None, :] - p[other][None, :, :], axis=2)
+            i, j = np.nonzero(d < cutoff)
+            i, j = mine[i], other[j]
+            keep = i < j if o == c else np.ones(len(i), bool)
+            out_i.append(np.minimum(i, j)[keep])
+            out_j.append(np.maximum(i, j)[keep])
+    if not out_i:
+        return np.zeros(0, int), np.zeros(0, int)
+    return np.concatenate(out_i), np.concatenate(out_j)
+
+
+def packing_order(pos, edges, R, a=1.0, cutoff=3.0, exclude=4, column=0.25):
+    """How ordered a packing is (MODELS.md §7.2 W3-1 against W3-2: onion-like shells
+    round an empty column along the feed axis z, against a disordered homogeneous
+    filling). For the edges inside the sphere:
+    - local_order: the mean of P2(t_i . t_j) = (3 (t_i . t_j)^2 - 1) / 2 over pairs of
+      edges whose midpoints are closer than `cutoff` a and that are more than `exclude`
+      edges apart along the rod (other strands, not the same one): 1 for parallel
+      neighbouring strands (a spool), 0 for an isotropic tangle;
+    - hoop_alignment: the length-weighted mean of |t . e_phi|, e_phi the azimuthal
+      direction round the feed axis (edges more than a from the axis): 1 for hoops
+      round the axis, 1/2 for isotropic directions;
+    - column_density: the rod length within `column` R of the feed axis over what an
+      even filling of the sphere would put there: 0 for an empty column, 1 for even."""
+    pos = np.asarray(pos, float)
+    edges = np.asarray(edges, int)
+    edges = edges[edges[:, 0] != edges[:, 1]]  # a dump pads the frames of a growing rod with (0, 0)
+    xa, xb = pos[edges[:, 0]], pos[edges[:, 1]]
+    inside = (np.linalg.norm(xa, axis=1) < R) & (np.linalg.norm(xb, axis=1) < R)
+    xa, xb, index = xa[inside], xb[inside], np.arange(len(edges))[inside]
+    seg = xb - xa
+    length = np.linalg.norm(seg, axis=1)
+    t = seg / np.maximum(length, 1e-300)[:, None]
+    mid = 0.5 * (xa + xb)
+    i, j = near_pairs(mid, cutoff * a)
+    far = np.abs(index[i] - index[j]) > exclude
+    i, j = i[far], j[far]
+    c = np.sum(t[i] * t[j], axis=1)
+    rho = np.hypot(mid[:, 0], mid[:, 1])
+    off_axis = rho > a
+    ephi = np.stack([-mid[:, 1], mid[:, 0], np.zeros(len(mid))], axis=1) / np.maximum(rho, 1e-300)[:, None]
+    hoop = np.abs(np.sum(t * ephi, axis=1))
+    rc = column * R
+    share = 1.0 - (1.0 - (rc / R) ** 2) ** 1.5  # volume of the column inside the sphere / sphere
+    in_column = length[rho < rc].sum() / max(length.sum(), 1e-300)
+    return {"local_order": float(np.mean(1.5 * c * c - 0.5)) if len(c) else float("nan"),
+            "order_pairs": int(len(c)),
+            "hoop_alignment": float(np.sum(hoop[off_axis] * length[off_axis]) /
+                                    max(length[off_axis].sum(), 1e-300)),
+            "column_density": float(in_column / share)}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("thermo")
-    ap.add_argument("trajectory", nargs="?", help="H5MD dump with bend.energy (for the distribution)")
+    ap.add_argument("trajectory", nargs="*",
+                    help="H5MD dumps with bend.energy, in order (a restarted run writes a new one): the "
+                         "last frame gives the distribution and the spacing, every frame the order")
     ap.add_argument("--R", type=float, required=True, help="sphere radius")
     ap.add_argument("--a", type=float, default=1.0)
     ap.add_argument("--YI", type=float, default=math.pi * 1000 / 4)
@@ -134,11 +210,40 @@ def main():
 
     if a.trajectory:
         import h5py
-        with h5py.File(a.trajectory, "r") as h:
-            pos = h["particles/all/position/value"][-1]
-            e = np.asarray(h["particles/all/bend.energy/value"][-1]).reshape(-1)
-            edges = (h["connectivity/edges/value"][-1] if "connectivity/edges" in h
+
+        def frame(h, k):
+            pos = h["particles/all/position/value"][k]
+            edges = (h["connectivity/edges/value"][k] if "connectivity/edges" in h
                      else np.stack([np.arange(len(pos) - 1), np.arange(1, len(pos))], axis=1))
+            return pos, edges
+
+        # order against phi over every dumped frame (phi from the thermo rows by step)
+        steps = np.array([r["step"] for r in rows])
+        curve = []
+        for name in a.trajectory:
+            with h5py.File(name, "r") as h:
+                for k, st in enumerate(h["particles/all/position/step"][:]):
+                    if steps.size and steps[0] <= st <= steps[-1]:
+                        o = packing_order(*frame(h, k), a.R, a.a)
+                        curve.append((float(np.interp(st, steps, phi)), o["local_order"],
+                                      o["hoop_alignment"], o["column_density"]))
+        with h5py.File(a.trajectory[-1], "r") as h:
+            pos, edges = frame(h, -1)
+            e = np.asarray(h["particles/all/bend.energy/value"][-1]).reshape(-1)
+        if curve:
+            c = np.array(sorted(curve))
+            fig, ax = plt.subplots(figsize=(5, 4))
+            ax.plot(c[:, 0], c[:, 1], ".-", ms=3, label="local order <P2(t_i . t_j)>")
+            ax.plot(c[:, 0], c[:, 2], ".-", ms=3, label="hoop alignment <|t . e_phi|>")
+            ax.plot(c[:, 0], c[:, 3], ".-", ms=3, label="column density (r < R/4) / even")
+            ax.axhline(0.5, color="0.6", ls=":", lw=0.8)
+            ax.set_xlabel("packing fraction phi")
+            ax.set_ylim(0, 1.3)
+            ax.legend(fontsize=7)
+            ax.set_title(f"order of the packing, R = {a.R:g} a (isotropic: 0, 1/2, 1)", fontsize=9)
+            fig.tight_layout()
+            fig.savefig(a.out + "_order.png", dpi=110)
+            plt.close(fig)
         nn, six = strand_spacing(pos, edges, a.R, margin=3 * a.a)
         nn, six = nn / a.a, six / a.a
         if len(nn):
@@ -157,6 +262,7 @@ def main():
             fig.tight_layout()
             fig.savefig(a.out + "_strand_spacing.png", dpi=110)
             plt.close(fig)
+        summary.update(packing_order(pos, edges, a.R, a.a))
         inside = np.linalg.norm(pos, axis=1) < a.R
         e = e[inside & (e > 0)]
         x = e / e.mean()

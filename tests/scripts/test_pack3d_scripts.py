@@ -44,6 +44,39 @@ def main():
     nn, six = pack3d_stats.strand_spacing(np.array(pos), np.array(edges), R=R, planes=3, margin=3.0)
     assert len(nn) > 300 and abs(np.median(nn) - ds) < 0.01, (len(nn), np.median(nn))
     assert abs(np.median(six) - ds) < 0.01, np.median(six)
+    # order of the spool: parallel neighbouring hoops, all round the axis, and an empty
+    # column (the innermost hoop has r = 1.5, the column reaches R / 4 = 7.5, so a few
+    # hoops lie in it); an isotropic tangle of the same size: no order, no empty column
+    # (rebuilt with edges of about a, as in the packings)
+    pos, edges = [], []
+    for i in range(12):
+        for j in range(-12, 13):
+            r = 1.5 + i * math.sqrt(3) / 2 * ds
+            z = (j + 0.5 * (i % 2)) * ds
+            if r * r + z * z > (R - 0.5) ** 2:
+                continue
+            first, m = len(pos), max(12, round(2 * math.pi * r))
+            ang = np.linspace(0, 2 * np.pi, m, endpoint=False)
+            pos.extend(np.stack([r * np.cos(ang), r * np.sin(ang), np.full_like(ang, z)], axis=1))
+            edges.extend((first + q, first + (q + 1) % m) for q in range(m))
+    spool = pack3d_stats.packing_order(np.array(pos), np.array(edges), R=R)
+    assert spool["local_order"] > 0.98 and spool["hoop_alignment"] > 0.999, spool
+    rng = np.random.default_rng(2)
+    n = 20000
+    mid = rng.normal(size=(n, 3))
+    mid *= (R * rng.random(n) ** (1 / 3) / np.linalg.norm(mid, axis=1))[:, None]
+    tan = rng.normal(size=(n, 3))
+    tan /= np.linalg.norm(tan, axis=1)[:, None]
+    tangle = np.concatenate([mid - 0.5 * tan, mid + 0.5 * tan])
+    tangle_edges = np.stack([np.arange(n), np.arange(n, 2 * n)], axis=1)
+    iso = pack3d_stats.packing_order(tangle, tangle_edges, R=R)
+    assert abs(iso["local_order"]) < 0.03 and iso["order_pairs"] > 1000, iso
+    assert abs(iso["hoop_alignment"] - 0.5) < 0.01, iso
+    assert abs(iso["column_density"] - 1.0) < 0.05, iso
+    # a spool whose hoops all lie outside r = 8 leaves the column empty
+    outer = [k for k, e in enumerate(edges) if math.hypot(*pos[e[0]][:2]) > 8.0]
+    ring = pack3d_stats.packing_order(np.array(pos), np.array(edges)[outer], R=R)
+    assert ring["column_density"] == 0.0 and ring["local_order"] > 0.99, ring
     print("pack3d scripts: ok")
 
 

@@ -211,12 +211,25 @@ ParamSpec run_spec() {
 }
 
 ParamSpec minimize_spec() {
-  ParamSpec s("command", "minimize", "sim:minimize{...}: FIRE relaxation to static equilibrium");
+  ParamSpec s("command", "minimize",
+              "sim:minimize{...}: relaxation to static equilibrium (FIRE, or L-BFGS on the node "
+              "positions); returns the iterations and whether ftol was reached");
   s.real("ftol",
          "stop when the largest nodal force (and rod-frame generalised force) is below this")
       .def(1e-8)
       .positive();
   s.integer("max_steps", "give up after this many steps").def(1e6).min(1);
+  s.string("method",
+           "\"fire\" (damped dynamics; nodes and rod frames) or \"lbfgs\" (quasi-Newton on the "
+           "energy; node positions only, forces must derive from the energy, friction springs "
+           "hold their force)")
+      .def(std::string("fire"));
+  s.integer("memory", "lbfgs: number of correction pairs kept").def(10.0).min(1);
+  s.add("max_move", ParamType::RealOrAuto,
+        "lbfgs: largest node displacement per iteration (keep it below the contact distance "
+        "where there is contact); \"auto\": unlimited")
+      .def(std::string("auto"))
+      .positive();
   return s;
 }
 
@@ -661,7 +674,13 @@ int l_run(lua_State* L) {
 int l_minimize(lua_State* L) {
   Simulation& sim = sim_arg(L);
   auto p = minimize_spec().validate(to_raw(L, 2));
-  long n = sim.minimize(p.real("ftol"), p.integer("max_steps"));
+  const std::string method = p.str("method");
+  RawParams lbfgs;
+  if (method == "lbfgs") {
+    lbfgs["memory"] = static_cast<double>(p.integer("memory"));
+    if (!p.is_auto("max_move")) lbfgs["max_move"] = p.real("max_move");
+  }
+  long n = sim.minimize(p.real("ftol"), p.integer("max_steps"), method, lbfgs);
   lua_pushinteger(L, n);
   lua_pushboolean(L, sim.max_force() < p.real("ftol"));
   return 2;

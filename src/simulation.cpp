@@ -779,13 +779,17 @@ void Simulation::run(const RunOptions& opt) {
   for (auto& d : dumps_) d->flush();
 }
 
-long Simulation::minimize(double ftol, long max_steps) {
+long Simulation::minimize(double ftol, long max_steps, const std::string& method,
+                          const RawParams& params) {
+  if (method != "fire" && method != "lbfgs")
+    throw InputError("minimize: method must be \"fire\" or \"lbfgs\", got \"" + method + "\"");
   auto saved = std::move(integrator_);
   double saved_dt = dt;
-  RawParams p;
+  RawParams p = params;
   if (saved && saved->requested_dt() > 0) p["dt"] = saved->requested_dt();
-  integrator_ = Registry<IntegratorStyle>::create("fire", *this, p);
+  integrator_ = Registry<IntegratorStyle>::create(method, *this, p);
   integrator_->set_id("minimize");
+  const bool clock = integrator_->advances_time();
   long taken = 0;
   try {
     setup_run();
@@ -794,7 +798,7 @@ long Simulation::minimize(double ftol, long max_steps) {
       if (max_force() < ftol) break;
       integrator_->step(*this);
       ++step;
-      time += dt;
+      if (clock) time += dt;
       after_step(taken + 1, false);
     }
     check_guard(taken);
@@ -811,8 +815,8 @@ long Simulation::minimize(double ftol, long max_steps) {
   integrator_ = std::move(saved);
   if (saved_dt > 0) dt = saved_dt;  // else keep FIRE's last step as the scene's dt
   if (verbose)
-    std::printf("minimize: %ld FIRE steps, max |f| = %.3g (tolerance %.3g)\n", taken, max_force(),
-                ftol);
+    std::printf("minimize: %ld %s steps, max |f| = %.3g (tolerance %.3g)\n", taken,
+                method == "fire" ? "FIRE" : "L-BFGS", max_force(), ftol);
   return taken;
 }
 

@@ -119,7 +119,11 @@ class Simulation {
   // --- running
   void run(const RunOptions& opt);
   // FIRE energy minimisation until max |f| < ftol; returns the steps taken.
-  long minimize(double ftol, long max_steps);
+  // Relaxes to a static equilibrium with the minimiser `method` (an integrator style:
+  // "fire", or "lbfgs" for the node positions only) and its parameters; returns the
+  // iterations taken.
+  long minimize(double ftol, long max_steps, const std::string& method = "fire",
+                const RawParams& params = {});
   // Zeroes forces, adds bonds, pairs and fixes; records energies by category.
   void compute_forces();
   void end_of_step();

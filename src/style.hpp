@@ -145,6 +145,8 @@ class IntegratorStyle : public Style {
   virtual void coordinates_added(Simulation&) {}
   // Largest omega*dt for which the scheme is stable on an undamped oscillator.
   virtual double stability_limit() const = 0;
+  // False for a minimiser that is not a time stepper (L-BFGS): the scene's clock stands.
+  virtual bool advances_time() const { return true; }
   // Requested time step, or <= 0 for "auto".
   double requested_dt() const { return dt_; }
   double safety() const { return safety_; }

@@ -1,6 +1,6 @@
 -- Purpose: a square Kirchhoff plate under a uniform load, simply supported or clamped, against the
 -- classical centre deflection w = alpha q a^4 / D (Koiter shell on Loop subdivision, MODELS.md §6;
--- static equilibrium by FIRE).
+-- static equilibrium by FIRE, or by L-BFGS with -v method=lbfgs).
 -- Expected run time: ~2 s at n = 8, ~10 s at n = 16, ~2 min at n = 32 (cells per side).
 --
 -- References: simply supported, Navier's double series (Timoshenko & Woinowsky-Krieger, "Theory of
@@ -40,16 +40,18 @@ sim:shell("koiter", { mesh = "plate", thickness = h, young = Y, poisson = nu, bo
 sim:compute("centre", "limit_point", { mesh = "plate", point = { a / 2, a / 2, 0 } })
 sim:integrator("fire", {})
 local t0 = slender.clock()
-local steps = sim:minimize { ftol = slender.var("ftol_rel", 1e-6) * q * (a / n) ^ 2, max_steps = 2000000 }
+local method = slender.var("method", "fire")
+local steps = sim:minimize { ftol = slender.var("ftol_rel", 1e-6) * q * (a / n) ^ 2, max_steps = 2000000,
+                             method = method, memory = slender.var("memory", 10) }
 local wall = slender.clock() - t0
 local w = sim:value("centre.uz")
 local err = math.abs(w / w_ref - 1)
-print(string.format("plate %s n=%d: w = %.6e, reference %.6e, error %.3e, %d FIRE steps, %.2f s",
-                    support, n, w, w_ref, err, steps, wall))
+print(string.format("plate %s n=%d: w = %.6e, reference %.6e, error %.3e, %d %s iterations, %.2f s",
+                    support, n, w, w_ref, err, steps, method, wall))
 local check = slender.var("check", 0)
 if check > 0 and not (err < check) then
   error(string.format("plate error %.3e above the check %.3e", err, check))
 end
-slender.result { case = "plate_load", support = support, n = n, nodes = nodes, triangles = tris,
+slender.result { case = "plate_load", method = method, support = support, n = n, nodes = nodes, triangles = tris,
                  w = w, w_ref = w_ref, error = err, rel_error = err, steps = steps, wall_s = wall,
                  element_steps_per_s = tris * steps / math.max(wall, 1e-9) }

@@ -114,6 +114,25 @@ TEST(Integrators, FireFindsTheMinimum) {
   EXPECT_NEAR(sim->nodes().x[1].norm(), 1.0, 1e-10);
 }
 
+TEST(Integrators, LbfgsFindsTheMinimumWithoutMovingTheClock) {
+  auto sim = oscillator("verlet", P({{"dt", 0.05}}), 10.0, 0.3);
+  sim->nodes().x[1].y() = 0.4;
+  sim->nodes().v[1] = Vec3(1, 2, 0);  // a minimiser starts from rest
+  const long steps = sim->minimize(1e-10, 1000, "lbfgs");
+  EXPECT_LT(steps, 40);
+  EXPECT_NEAR(sim->nodes().x[1].norm(), 1.0, 1e-10);
+  EXPECT_EQ(sim->time, 0.0);  // not a time stepper: the scene's clock stands
+  EXPECT_EQ(sim->nodes().v[1].norm(), 0.0);
+  EXPECT_THROW(sim->minimize(1e-10, 10, "newton"), InputError);
+  // max_move caps each iteration's displacement: 0.3 to go at 0.01 per iteration
+  sim->nodes().x[1] = Vec3(1.3, 0, 0);
+  sim->forces_valid = false;
+  const long capped = sim->minimize(1e-10, 1000, "lbfgs", P({{"max_move", 0.01}}));
+  EXPECT_GE(capped, 30);
+  EXPECT_LT(capped, 1000);
+  EXPECT_NEAR(sim->nodes().x[1].norm(), 1.0, 1e-10);
+}
+
 TEST(Integrators, ViscousDampingDecaysAtTheRightRate) {
   // x'' = -w^2 x - (gamma/m) x' with small gamma: amplitude ~ exp(-gamma t / 2m)
   auto sim = oscillator("verlet", P({{"dt", 0.01}}), 4.0, 0.1);

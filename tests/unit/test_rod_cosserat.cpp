@@ -137,6 +137,23 @@ TEST(CosseratRodBond, MinimizeUntwistsFramesThatExertNoForceOnTheNodes) {
   for (auto& qi : q) EXPECT_NEAR(qi.norm(), 1.0, 1e-12);
 }
 
+TEST(CosseratRodBond, LbfgsRefusesFreeFrames) {
+  // L-BFGS moves node positions only: with free frames it would stop with the frames
+  // still turning, so it refuses and names the minimiser that handles them
+  Simulation sim(3, 1);
+  sim.verbose = false;
+  sim.add_chain("r", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0.1, 0)}, 1.0, false);
+  sim.add_bond("spring", P({{"k", 400.0}}));
+  sim.add_bond("rod/cosserat",
+               P({{"YI", 2.0}, {"GJ", 1.5}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
+  try {
+    sim.minimize(1e-9, 100, "lbfgs");
+    FAIL() << "lbfgs accepted free rod frames";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fire"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CosseratRodBond, MinimizeCurlsAPrecurvedRodIntoItsArc) {
   // as RodWithRestCurvatureRelaxesToItsArc, by FIRE: nodes and frames together
   Simulation sim(3, 1);

@@ -87,9 +87,15 @@ function M.build(opts)
   s.t0 = slender.clock()
   -- grow to phi_e and relax to equilibrium; returns the FIRE steps
   s.steps_total = 0  -- FIRE steps of all relaxations, for element-steps/s
+  -- -v minimizer=lbfgs: L-BFGS instead of FIRE (frictionless scenes; each step moves a node
+  -- by at most h / 4, so no step jumps through a contact; -v memory= correction pairs)
+  s.minimizer = slender.var("minimizer", "fire")
+  local lbfgs = s.minimizer == "lbfgs" and
+                {method = "lbfgs", memory = slender.var("memory", 50), max_move = s.h / 4} or {}
   function s.relax(phi)
     sim:modify("g", {phi_e = phi})
-    local n = sim:minimize{ftol = s.ftol, max_steps = s.max_steps}
+    local n = sim:minimize{ftol = s.ftol, max_steps = s.max_steps, method = lbfgs.method,
+                           memory = lbfgs.memory, max_move = lbfgs.max_move}
     s.steps_total = s.steps_total + n
     return n
   end

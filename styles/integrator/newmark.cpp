@@ -80,7 +80,12 @@ class NewmarkIntegrator : public IntegratorStyle {
       epoch_ = sim.state_epoch;
       initialised_ = true;
     }
-    note(sim, next_dt_, 0.0, "run start (stable cap " + std::to_string(cap_) + ")");
+    // a deck that runs in short chunks starts many runs: log a start only when it
+    // changes the step or its cap
+    if (!started_ || next_dt_ != logged_dt_ || cap_ != logged_cap_)
+      note(sim, next_dt_, 0.0, "run start (stable cap " + std::to_string(cap_) + ")");
+    started_ = true;
+    logged_cap_ = cap_;
   }
 
   void step(Simulation& sim) override {
@@ -176,7 +181,8 @@ class NewmarkIntegrator : public IntegratorStyle {
   Property<Vec3>* a_ = nullptr;
   double cap_ = 0, next_dt_ = 0, lmin_ = 1, last_eta_ = 0, logged_dt_ = 0;
   long rejected_ = 0, epoch_ = -1;
-  bool initialised_ = false;
+  bool initialised_ = false, started_ = false;
+  double logged_cap_ = 0;
   std::vector<Vec3> x0_, v0_, anew_;
   std::ofstream log_;
 };

@@ -812,11 +812,14 @@ long Simulation::minimize(double ftol, long max_steps, const std::string& method
   for (auto& c : coords_)
     for (auto& v : c->v->values()) v.setZero();
   ++state_epoch;
+  std::string extra;
+  for (const auto& key : integrator_->value_keys())  // e.g. L-BFGS force evaluations
+    extra += ", " + key + " " + std::to_string(static_cast<long>(integrator_->value(key)));
   integrator_ = std::move(saved);
   if (saved_dt > 0) dt = saved_dt;  // else keep FIRE's last step as the scene's dt
   if (verbose)
-    std::printf("minimize: %ld %s steps, max |f| = %.3g (tolerance %.3g)\n", taken,
-                method == "fire" ? "FIRE" : "L-BFGS", max_force(), ftol);
+    std::printf("minimize: %ld %s steps%s, max |f| = %.3g (tolerance %.3g)\n", taken,
+                method == "fire" ? "FIRE" : "L-BFGS", extra.c_str(), max_force(), ftol);
   return taken;
 }
 

@@ -1,6 +1,6 @@
 -- Purpose: a square Kirchhoff plate under a uniform load, simply supported or clamped, against the
 -- classical centre deflection w = alpha q a^4 / D (Koiter shell on Loop subdivision, MODELS.md §6;
--- static equilibrium by FIRE, or by L-BFGS with -v method=lbfgs).
+-- static equilibrium by FIRE, or by L-BFGS with -v integrator=lbfgs).
 -- Expected run time: ~2 s at n = 8, ~10 s at n = 16, ~2 min at n = 32 (cells per side).
 --
 -- References: simply supported, Navier's double series (Timoshenko & Woinowsky-Krieger, "Theory of
@@ -40,9 +40,9 @@ sim:shell("koiter", { mesh = "plate", thickness = h, young = Y, poisson = nu, bo
 sim:compute("centre", "limit_point", { mesh = "plate", point = { a / 2, a / 2, 0 } })
 sim:integrator("fire", {})
 local t0 = slender.clock()
-local method = slender.var("method", "fire")
+local method = slender.var("integrator", "fire")
 local steps = sim:minimize { ftol = slender.var("ftol_rel", 1e-6) * q * (a / n) ^ 2, max_steps = 2000000,
-                             method = method, memory = slender.var("memory", 10) }
+                             method = method, memory = slender.var("memory", 50) }
 local wall = slender.clock() - t0
 local w = sim:value("centre.uz")
 local err = math.abs(w / w_ref - 1)

@@ -96,6 +96,7 @@ class LbfgsMinimizer : public IntegratorStyle {
     for (int tries = 0; tries < 40 && !accepted; ++tries) {
       for (size_t i = 0; i < N; ++i) n.x[i] = x0[i] + alpha * d[i];
       sim.compute_forces();
+      ++evaluations_;
       const double e1 = sim.potential_energy();
       // Armijo; near the minimum the energy change drowns in round-off, then a step
       // that lowers the slope along d is taken instead
@@ -107,6 +108,7 @@ class LbfgsMinimizer : public IntegratorStyle {
       // no decrease along d even for tiny steps: go back and restart from steepest descent
       for (size_t i = 0; i < N; ++i) n.x[i] = x0[i];
       sim.compute_forces();
+      ++evaluations_;
       history_.clear();
       ++restarts_;
       sim.end_of_step();
@@ -129,9 +131,10 @@ class LbfgsMinimizer : public IntegratorStyle {
     sim.end_of_step();
   }
 
-  std::vector<std::string> value_keys() const override { return {"restarts"}; }
+  std::vector<std::string> value_keys() const override { return {"restarts", "evaluations"}; }
   double value(const std::string& key) const override {
     if (key == "restarts") return static_cast<double>(restarts_);
+    if (key == "evaluations") return static_cast<double>(evaluations_);
     return IntegratorStyle::value(key);
   }
 
@@ -154,7 +157,7 @@ class LbfgsMinimizer : public IntegratorStyle {
   double max_move_;
   double gamma0_ = 1.0;
   std::deque<Pair> history_;
-  long restarts_ = 0;
+  long restarts_ = 0, evaluations_ = 0;
 };
 
 }  // namespace slender

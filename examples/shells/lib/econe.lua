@@ -92,7 +92,12 @@ function M.build(opts)
   -- edge 1/16, core 1/64 it reaches FIRE's equilibria (E_b_hat within 1e-4, the kissing
   -- angle within one bisection step) in 15 times fewer iterations. Friction needs the
   -- motion of FIRE (its stick springs follow the velocities): -v minimizer=fire
-  s.minimizer = slender.var("minimizer", (opts.mu_static or 0) > 0 and "fire" or "lbfgs")
+  -- (-v integrator= is the same switch, for the validation report)
+  s.minimizer = slender.var("minimizer",
+                            slender.var("integrator", (opts.mu_static or 0) > 0 and "fire" or "lbfgs"))
+  if s.minimizer ~= "fire" and s.minimizer ~= "lbfgs" then
+    error("minimizer must be fire or lbfgs, got " .. tostring(s.minimizer))
+  end
   local lbfgs = s.minimizer == "lbfgs" and
                 {method = "lbfgs", memory = slender.var("memory", 50), max_move = s.h / 4} or {}
   function s.relax(phi)

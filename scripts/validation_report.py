@@ -182,7 +182,7 @@ CASES = [
     dict(id="econe_kiss", family="shell", title="E-cone kissing angle (h = 0.02) against vanishing thickness",
          deck="shells/econe.lua", fixed={"h": 0.02, "phi_max": 7.0}, fast_fixed={"fast": 1},
          ladder=("edge", [0.125, 0.0625, 0.03125], [0.125]), h=float,
-         integrators=(["lbfgs"], ["lbfgs"]), order=None,
+         integrators=(["fire"], ["fire"]), order=None,
          metric=lambda work, r: (abs(float(r["phi_kiss"]) - THEORY_KISS) / THEORY_KISS,
                                  "phi_kiss = %s" % r["phi_kiss"]),
          reference="phi_e^kiss -> 7.08 as h -> 0 (vanishing-thickness theory); at h = 0.02 the "

@@ -118,8 +118,8 @@ class Simulation {
 
   // --- running
   void run(const RunOptions& opt);
-  // Relaxes to a static equilibrium (max |f| < ftol) with the minimiser `method` (an integrator style:
-  // "fire", or "lbfgs" for the node positions only) and its parameters; returns the
+  // Relaxes to a static equilibrium (max |f| < ftol) with the minimiser `method` (an integrator
+  // style: "fire", or "lbfgs" for the node positions only) and its parameters; returns the
   // iterations taken.
   long minimize(double ftol, long max_steps, const std::string& method = "fire",
                 const RawParams& params = {});

@@ -12,6 +12,23 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import pack3d_stats  # noqa: E402
 
 
+def spool(ds, R, edges_of_hoop):
+    """Hoops round the z axis on a hexagonal lattice of spacing ds in (r, z) (the inverse
+    spool) inside a sphere of radius R; edges_of_hoop(r) edges per hoop."""
+    pos, edges = [], []
+    for i in range(12):
+        for j in range(-12, 13):
+            r = 1.5 + i * math.sqrt(3) / 2 * ds
+            z = (j + 0.5 * (i % 2)) * ds
+            if r * r + z * z > (R - 0.5) ** 2:
+                continue
+            first, m = len(pos), edges_of_hoop(r)
+            ang = np.linspace(0, 2 * np.pi, m, endpoint=False)
+            pos.extend(np.stack([r * np.cos(ang), r * np.sin(ang), np.full_like(ang, z)], axis=1))
+            edges.extend((first + q, first + (q + 1) % m) for q in range(m))
+    return np.array(pos), np.array(edges)
+
+
 def main():
     phi = np.array([1e-6, 0.2, 0.4, 0.45940, 0.46])
     k, eb, f, rg2 = pack3d_stats.purohit(phi, R=10.0, ds=2.81)
@@ -30,37 +47,18 @@ def main():
     assert abs(mu + 0.3) < 0.02 and abs(sigma - 0.8) < 0.02 and ks < 0.02, (mu, sigma, ks)
     # strand spacing from cross-sections: hoops round the z axis on a hexagonal lattice
     # of spacing d_s in (r, z) (the inverse spool) give nearest sections d_s apart
-    ds, R, pos, edges = 2.81, 30.0, [], []
-    for i in range(12):
-        for j in range(-12, 13):
-            r = 1.5 + i * math.sqrt(3) / 2 * ds
-            z = (j + 0.5 * (i % 2)) * ds
-            if r * r + z * z > (R - 0.5) ** 2:
-                continue
-            first = len(pos)
-            ang = np.linspace(0, 2 * np.pi, 600, endpoint=False)
-            pos.extend(np.stack([r * np.cos(ang), r * np.sin(ang), np.full_like(ang, z)], axis=1))
-            edges.extend((first + m, first + (m + 1) % 600) for m in range(600))
-    nn, six = pack3d_stats.strand_spacing(np.array(pos), np.array(edges), R=R, planes=3, margin=3.0)
+    ds, R = 2.81, 30.0
+    pos, edges = spool(ds, R, lambda r: 600)
+    nn, six = pack3d_stats.strand_spacing(pos, edges, R=R, planes=3, margin=3.0)
     assert len(nn) > 300 and abs(np.median(nn) - ds) < 0.01, (len(nn), np.median(nn))
     assert abs(np.median(six) - ds) < 0.01, np.median(six)
     # order of the spool: parallel neighbouring hoops, all round the axis, and an empty
     # column (the innermost hoop has r = 1.5, the column reaches R / 4 = 7.5, so a few
     # hoops lie in it); an isotropic tangle of the same size: no order, no empty column
     # (rebuilt with edges of about a, as in the packings)
-    pos, edges = [], []
-    for i in range(12):
-        for j in range(-12, 13):
-            r = 1.5 + i * math.sqrt(3) / 2 * ds
-            z = (j + 0.5 * (i % 2)) * ds
-            if r * r + z * z > (R - 0.5) ** 2:
-                continue
-            first, m = len(pos), max(12, round(2 * math.pi * r))
-            ang = np.linspace(0, 2 * np.pi, m, endpoint=False)
-            pos.extend(np.stack([r * np.cos(ang), r * np.sin(ang), np.full_like(ang, z)], axis=1))
-            edges.extend((first + q, first + (q + 1) % m) for q in range(m))
-    spool = pack3d_stats.packing_order(np.array(pos), np.array(edges), R=R)
-    assert spool["local_order"] > 0.98 and spool["hoop_alignment"] > 0.999, spool
+    pos, edges = spool(ds, R, lambda r: max(12, round(2 * math.pi * r)))
+    lattice = pack3d_stats.packing_order(pos, edges, R=R)
+    assert lattice["local_order"] > 0.98 and lattice["hoop_alignment"] > 0.999, lattice
     rng = np.random.default_rng(2)
     n = 20000
     mid = rng.normal(size=(n, 3))
@@ -75,7 +73,7 @@ def main():
     assert abs(iso["column_density"] - 1.0) < 0.05, iso
     # a spool whose hoops all lie outside r = 8 leaves the column empty
     outer = [k for k, e in enumerate(edges) if math.hypot(*pos[e[0]][:2]) > 8.0]
-    ring = pack3d_stats.packing_order(np.array(pos), np.array(edges)[outer], R=R)
+    ring = pack3d_stats.packing_order(pos, edges[outer], R=R)
     assert ring["column_density"] == 0.0 and ring["local_order"] > 0.99, ring
     print("pack3d scripts: ok")
 

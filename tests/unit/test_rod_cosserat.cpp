@@ -22,6 +22,21 @@ double total_energy(Simulation& sim) {
   sim.compute_forces();
   return sim.potential_energy();
 }
+// A straight rod of 21 nodes 0.5 apart with kbar = (0, 1/R, 0): it curls into an arc of
+// radius R.
+void add_precurved_rod(Simulation& sim, double R, double rot_damping) {
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 21; ++i) pts.emplace_back(0.5 * i, 0, 0);
+  sim.add_chain("r", pts, 1.0, false);
+  sim.add_bond("spring", P({{"k", 400.0}}));
+  sim.add_bond("rod/cosserat", P({{"YI", 2.0},
+                                  {"GJ", 1.5},
+                                  {"coupling", 200.0},
+                                  {"rot_inertia", 0.5},
+                                  {"rest_curvature", std::vector<double>{0, 1 / R, 0}},
+                                  {"rot_damping", rot_damping}}));
+}
+
 }  // namespace
 
 TEST(CosseratRodBond, ForcesAndQuaternionForcesAreMinusTheEnergyGradient) {
@@ -86,17 +101,8 @@ TEST(CosseratRodBond, RodWithRestCurvatureRelaxesToItsArc) {
   for (const char* integ : {"verlet", "gear"}) {
     Simulation sim(3, 1);
     sim.verbose = false;
-    std::vector<Vec3> pts;
-    for (int i = 0; i < 21; ++i) pts.emplace_back(0.5 * i, 0, 0);
-    sim.add_chain("r", pts, 1.0, false);
     const double R = 4.0;
-    sim.add_bond("spring", P({{"k", 400.0}}));
-    sim.add_bond("rod/cosserat", P({{"YI", 2.0},
-                                    {"GJ", 1.5},
-                                    {"coupling", 200.0},
-                                    {"rot_inertia", 0.5},
-                                    {"rest_curvature", std::vector<double>{0, 1 / R, 0}},
-                                    {"rot_damping", 2.0}}));
+    add_precurved_rod(sim, R, 2.0);
     sim.add_fix("drag", "damping/viscous", P({{"gamma", 2.0}}));
     sim.set_integrator(integ, P({{"dt", std::string("auto")}}));
     // damped dynamics until the rod is at rest (Gear's stable step is the smaller)
@@ -158,16 +164,8 @@ TEST(CosseratRodBond, MinimizeCurlsAPrecurvedRodIntoItsArc) {
   // as RodWithRestCurvatureRelaxesToItsArc, by FIRE: nodes and frames together
   Simulation sim(3, 1);
   sim.verbose = false;
-  std::vector<Vec3> pts;
-  for (int i = 0; i < 21; ++i) pts.emplace_back(0.5 * i, 0, 0);
-  sim.add_chain("r", pts, 1.0, false);
   const double R = 4.0;
-  sim.add_bond("spring", P({{"k", 400.0}}));
-  sim.add_bond("rod/cosserat", P({{"YI", 2.0},
-                                  {"GJ", 1.5},
-                                  {"coupling", 200.0},
-                                  {"rot_inertia", 0.5},
-                                  {"rest_curvature", std::vector<double>{0, 1 / R, 0}}}));
+  add_precurved_rod(sim, R, 0.0);
   sim.set_integrator("verlet", P({{"dt", std::string("auto")}}));
   sim.minimize(1e-8, 400000);
   EXPECT_LT(sim.max_force(), 1e-8);

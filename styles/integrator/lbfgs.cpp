@@ -62,10 +62,11 @@ class LbfgsMinimizer : public IntegratorStyle {
   void step(Simulation& sim) override {
     auto& n = sim.nodes();
     const size_t N = n.n_owned();
-    // g = -f; d = -H g by the two-loop recursion
-    std::vector<Vec3> d(N);
-    for (size_t i = 0; i < N; ++i) d[i] = n.f[i];  // -g
-    std::vector<double> a(history_.size());
+    // g = -f; d = -H g by the two-loop recursion (buffers kept between iterations)
+    auto& d = d_;
+    auto& a = a_;
+    d.assign(n.f.begin(), n.f.begin() + static_cast<long>(N));  // -g
+    a.resize(history_.size());
     for (size_t k = history_.size(); k-- > 0;) {
       a[k] = history_[k].rho * dot(history_[k].s, d);
       axpy(-a[k], history_[k].y, d);
@@ -88,8 +89,10 @@ class LbfgsMinimizer : public IntegratorStyle {
     for (auto& v : d) dmax = std::max(dmax, v.norm());
     double alpha = dmax > max_move_ ? max_move_ / dmax : 1.0;
 
-    const std::vector<Vec3> x0(n.x.begin(), n.x.begin() + static_cast<long>(N));
-    const std::vector<Vec3> f0(n.f.begin(), n.f.begin() + static_cast<long>(N));
+    auto& x0 = x0_;
+    auto& f0 = f0_;
+    x0.assign(n.x.begin(), n.x.begin() + static_cast<long>(N));
+    f0.assign(n.f.begin(), n.f.begin() + static_cast<long>(N));
     const double e0 = sim.potential_energy();
     const double c1 = 1e-4, noise = 1e-13 * std::max(std::abs(e0), 1e-300);
     bool accepted = false;
@@ -114,7 +117,9 @@ class LbfgsMinimizer : public IntegratorStyle {
       sim.end_of_step();
       return;
     }
-    Pair p;
+    // the new pair is built in spare_, which takes over the storage of the pair that
+    // leaves the memory
+    Pair& p = spare_;
     p.s.resize(N);
     p.y.resize(N);
     for (size_t i = 0; i < N; ++i) {
@@ -126,7 +131,11 @@ class LbfgsMinimizer : public IntegratorStyle {
     if (sy > 1e-12 * std::sqrt(dot(p.s, p.s) * dot(p.y, p.y))) {
       p.rho = 1.0 / sy;
       history_.push_back(std::move(p));
-      if (history_.size() > memory_) history_.pop_front();
+      spare_ = Pair{};
+      if (history_.size() > memory_) {
+        spare_ = std::move(history_.front());
+        history_.pop_front();
+      }
     }
     sim.end_of_step();
   }
@@ -157,6 +166,9 @@ class LbfgsMinimizer : public IntegratorStyle {
   double max_move_;
   double gamma0_ = 1.0;
   std::deque<Pair> history_;
+  Pair spare_;
+  std::vector<Vec3> d_, x0_, f0_;
+  std::vector<double> a_;
   long restarts_ = 0, evaluations_ = 0;
 };
 

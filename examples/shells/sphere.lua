@@ -4,7 +4,8 @@
 -- Both follow the same confinement ratio f = D / R_s = 2 (1 + tau t) (D: free diameter of the disc), so
 -- their U_b maps can be compared at equal f. Explicit Newmark (gamma = 1) with damping and the adaptive
 -- time step; every change of dt is logged with its reason in <out>/dt_log.csv.
--- Run time: -v fast=1 about 20 s; defaults (h = 0.01, edge 1/16, f to 3) about 20 min.
+-- Run time: -v fast=1 about 20 s; defaults (h = 0.01, edge 1/16, f to 3) about 20 min of CPU (22.5 min growing,
+-- 40 min shrinking measured with other jobs sharing the machine).
 local slender = require("slender")
 
 local fast = slender.var("fast", 0) == 1

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -220,10 +221,16 @@ ParamSpec minimize_spec() {
       .positive();
   s.integer("max_steps", "give up after this many steps").def(1e6).min(1);
   s.string("method",
-           "\"fire\" (damped dynamics; nodes and rod frames) or \"lbfgs\" (quasi-Newton on the "
+           "\"fire\" (damped dynamics; nodes and rod frames), \"lbfgs\" (quasi-Newton on the "
            "energy; node positions only, forces must derive from the energy, friction springs "
-           "hold their force)")
+           "hold their force) or \"dynamics\" (the scene's own integrator and damping, e.g. "
+           "newmark with mass-proportional damping; needs ketol)")
       .def(std::string("fire"));
+  s.add("ketol", ParamType::RealOrAuto,
+        "also require the kinetic energy to be at most this (needed by \"dynamics\"); "
+        "\"auto\": not checked")
+      .def(std::string("auto"))
+      .min(0);
   s.integer("memory", "lbfgs: number of correction pairs kept").def(10.0).min(1);
   s.add("max_move", ParamType::RealOrAuto,
         "lbfgs: largest node displacement per iteration (keep it below the contact distance "
@@ -680,9 +687,13 @@ int l_minimize(lua_State* L) {
     lbfgs["memory"] = static_cast<double>(p.integer("memory"));
     if (!p.is_auto("max_move")) lbfgs["max_move"] = p.real("max_move");
   }
-  long n = sim.minimize(p.real("ftol"), p.integer("max_steps"), method, lbfgs);
+  const double ketol =
+      p.is_auto("ketol") ? std::numeric_limits<double>::infinity() : p.real("ketol");
+  long n = sim.minimize(p.real("ftol"), p.integer("max_steps"), method, lbfgs, ketol);
   lua_pushinteger(L, n);
-  lua_pushboolean(L, sim.max_force() < p.real("ftol"));
+  // velocities are zeroed after the relaxation: the kinetic criterion held if it stopped early
+  lua_pushboolean(
+      L, sim.max_force() < p.real("ftol") && (!std::isfinite(ketol) || n < p.integer("max_steps")));
   return 2;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <random>
@@ -118,11 +119,14 @@ class Simulation {
 
   // --- running
   void run(const RunOptions& opt);
-  // Relaxes to a static equilibrium (max |f| < ftol) with the minimiser `method` (an integrator
-  // style: "fire", or "lbfgs" for the node positions only) and its parameters; returns the
-  // iterations taken.
+  // Relaxes to a static equilibrium (max |f| < ftol and, where given, kinetic energy <= ketol)
+  // with the minimiser `method` (an integrator style: "fire", or "lbfgs" for the node positions
+  // only) and its parameters, or with "dynamics": the scene's own integrator and damping, which
+  // needs ketol (a damped oscillation passes max |f| < ftol at every swing through
+  // equilibrium). Returns the iterations taken.
   long minimize(double ftol, long max_steps, const std::string& method = "fire",
-                const RawParams& params = {});
+                const RawParams& params = {},
+                double ketol = std::numeric_limits<double>::infinity());
   // Zeroes forces, adds bonds, pairs and fixes; records energies by category.
   void compute_forces();
   void end_of_step();

@@ -133,6 +133,36 @@ TEST(Integrators, LbfgsFindsTheMinimumWithoutMovingTheClock) {
   EXPECT_NEAR(sim->nodes().x[1].norm(), 1.0, 1e-10);
 }
 
+TEST(Integrators, DampedDynamicsRelaxesWithTheScenesIntegratorToBothTolerances) {
+  // underdamped oscillator (omega = 3.16, decay rate 0.25): the scene's own verlet and drag
+  auto make = [] {
+    auto sim = oscillator("verlet", P({{"dt", 0.05}}), 10.0, 0.3);
+    sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
+    return sim;
+  };
+  auto sim = make();
+  // the force alone is below ftol at every swing through equilibrium, so ketol is required
+  EXPECT_THROW(sim->minimize(1e-4, 100000, "dynamics"), InputError);
+  Simulation bare(2, 1);
+  bare.verbose = false;
+  bare.add_chain("s", {Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1.0, false);
+  EXPECT_THROW(bare.minimize(1e-4, 10, "dynamics", {}, 1e-12), InputError);  // no integrator
+
+  // |f| < 0.5 holds within 0.05 of x = 1: with no kinetic limit the relaxation stops at the
+  // first swing through (a quarter period, about 10 steps), at full speed
+  auto loose = make();
+  EXPECT_LT(loose->minimize(0.5, 100000, "dynamics", {}, 1e300), 20);
+  // both together hold only once the amplitude is below about ftol / k = 1e-5:
+  // ln(0.3 / 1e-5) / 0.25 = 41 time units
+  const long steps = sim->minimize(1e-4, 100000, "dynamics", {}, 1e-10);
+  EXPECT_GT(steps * 0.05, 30.0);
+  EXPECT_LT(steps, 100000);
+  EXPECT_NEAR(sim->nodes().x[1].x(), 1.0, 1e-4 / 10.0);
+  EXPECT_NEAR(sim->time, steps * 0.05, 1e-9);            // a time stepper: the clock moved
+  EXPECT_EQ(sim->integrator()->style_name(), "verlet");  // still the scene's integrator
+  EXPECT_EQ(sim->nodes().v[1].norm(), 0.0);
+}
+
 TEST(Integrators, ViscousDampingDecaysAtTheRightRate) {
   // x'' = -w^2 x - (gamma/m) x' with small gamma: amplitude ~ exp(-gamma t / 2m)
   auto sim = oscillator("verlet", P({{"dt", 0.01}}), 4.0, 0.1);

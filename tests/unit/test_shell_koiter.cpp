@@ -222,6 +222,36 @@ TEST(KoiterShell, LbfgsReachesFiresPlateInFewerIterations) {
   EXPECT_LT(2 * n_lbfgs, n_fire);
 }
 
+TEST(KoiterShell, DampedDynamicsReachesFiresPlate) {
+  // the third relaxation: the scene's explicit Newmark with mass-proportional damping, to the
+  // force and the kinetic-energy tolerance (the shell decks' damped-dynamics option); c = 12
+  // damps the lowest mode, omega_1 = 2 pi^2 sqrt(D / rho h) = 6.0, critically
+  const double q = 2e-5;
+  auto run = [&](bool dynamics, long* its) {
+    auto sim = shell_scene(shell::make_rectangle(1.0, 1.0, 8, 8),
+                           P({{"thickness", 0.01},
+                              {"boundary", std::string("simply_supported")},
+                              {"load", std::vector<double>{0, 0, q}}}));
+    if (dynamics) {
+      sim->set_integrator("newmark", P({{"gamma", 1.0}, {"damping", 12.0}}));
+      *its = sim->minimize(1e-13, 400000, "dynamics", {}, 1e-24);
+    } else {
+      sim->set_integrator("fire", P({}));
+      *its = sim->minimize(1e-13, 400000);
+    }
+    EXPECT_LT(sim->max_force(), 1e-13);
+    EXPECT_LT(*its, 400000);
+    double w = 0;
+    for (int i : sim->group("s")) w = std::max(w, sim->nodes().x[i].z());
+    return w;
+  };
+  long n_fire = 0, n_dyn = 0;
+  const double w_fire = run(false, &n_fire), w_dyn = run(true, &n_dyn);
+  std::printf("plate n=8: FIRE %ld steps, damped Newmark %ld steps, w %.9e / %.9e\n", n_fire, n_dyn,
+              w_fire, w_dyn);
+  EXPECT_NEAR(w_dyn / w_fire, 1.0, 1e-6);
+}
+
 TEST(KoiterShell, SimplySupportedPlateUnderUniformLoad) {
   double t8 = 0, t16 = 0;
   const double e8 = plate_error(8, &t8), e16 = plate_error(16, &t16);

@@ -80,17 +80,6 @@ function M.build(opts)
   function s.core_radius(id)
     return s.inner == 0 and sim:value((id or "core") .. ".radius") or -1
   end
-  sim:integrator("fire", {})
-  sim:dump("surface", "shell", {file = s.out .. "/surface.h5", every = 1000000000, mesh = "disc",
-                                faces = s.contact and {"koiter.Ub", "koiter.Us", "contact/shell.contact"}
-                                        or {"koiter.Ub", "koiter.Us"}})
-  print(string.format("e-cone: h = %g, %d nodes, %d triangles, ftol = %.3g", s.h, s.nodes, s.tris,
-                      s.ftol))
-
-  -- wall times count from s.t0; a resumed ramp moves it back by the earlier runs' time
-  s.t0 = slender.clock()
-  -- grow to phi_e and relax to equilibrium; returns the FIRE steps
-  s.steps_total = 0  -- FIRE steps of all relaxations, for element-steps/s
   -- relaxations: FIRE by default; -v minimizer=lbfgs for L-BFGS (frictionless scenes only:
   -- friction springs need FIRE's motion; each iteration moves a node by at most h / 4, so no
   -- step jumps through a contact; -v memory= correction pairs). With a refined core (h = 0.02,
@@ -98,15 +87,36 @@ function M.build(opts)
   -- one bisection step apart) in 15 times fewer iterations; on uniform meshes, whose apex is
   -- under-resolved, it lands on other equilibria within the tolerance (E_b_hat up to 0.8 %
   -- apart, the kiss 0.25 % lower at edge 1/16, 2 % at 1/32). -v integrator= is the same switch.
+  -- -v minimizer=damped relaxes by damped dynamics instead: explicit Newmark (gamma = 1) with
+  -- mass-proportional damping (-v damping=, per time unit) at its stable step, until the force
+  -- is below ftol and the kinetic energy below ketol_rel * Y h^3 (the bending energy scale of
+  -- the unit disc; default 1e-7).
   s.minimizer = slender.var("minimizer", slender.var("integrator", "fire"))
-  if s.minimizer ~= "fire" and s.minimizer ~= "lbfgs" then
-    error("minimizer must be fire or lbfgs, got " .. tostring(s.minimizer))
+  if s.minimizer ~= "fire" and s.minimizer ~= "lbfgs" and s.minimizer ~= "damped" then
+    error("minimizer must be fire, lbfgs or damped, got " .. tostring(s.minimizer))
   end
+  s.ketol = s.minimizer == "damped" and slender.var("ketol_rel", 1e-7) * s.young * s.h ^ 3 or nil
+  if s.minimizer == "damped" then
+    sim:integrator("newmark", {gamma = 1, damping = slender.var("damping", 5)})
+  else
+    sim:integrator("fire", {})
+  end
+  sim:dump("surface", "shell", {file = s.out .. "/surface.h5", every = 1000000000, mesh = "disc",
+                                faces = s.contact and {"koiter.Ub", "koiter.Us", "contact/shell.contact"}
+                                        or {"koiter.Ub", "koiter.Us"}})
+  print(string.format("e-cone: h = %g, %d nodes, %d triangles, ftol = %.3g%s", s.h, s.nodes, s.tris,
+                      s.ftol, s.ketol and string.format(", ketol = %.3g", s.ketol) or ""))
+
+  -- wall times count from s.t0; a resumed ramp moves it back by the earlier runs' time
+  s.t0 = slender.clock()
+  -- grow to phi_e and relax to equilibrium; returns the FIRE steps
+  s.steps_total = 0  -- FIRE steps of all relaxations, for element-steps/s
+  local method = ({fire = "fire", lbfgs = "lbfgs", damped = "dynamics"})[s.minimizer]
   local lbfgs = s.minimizer == "lbfgs" and
-                {method = "lbfgs", memory = slender.var("memory", 50), max_move = s.h / 4} or {}
+                {memory = slender.var("memory", 50), max_move = s.h / 4} or {}
   function s.relax(phi)
     sim:modify("g", {phi_e = phi})
-    local n = sim:minimize{ftol = s.ftol, max_steps = s.max_steps, method = lbfgs.method,
+    local n = sim:minimize{ftol = s.ftol, max_steps = s.max_steps, method = method, ketol = s.ketol,
                            memory = lbfgs.memory, max_move = lbfgs.max_move}
     s.steps_total = s.steps_total + n
     return n

@@ -833,17 +833,16 @@ long Simulation::minimize(double ftol, long max_steps, const std::string& method
     for (auto& v : c->v->values()) v.setZero();
   ++state_epoch;
   std::string extra;
-  if (!dynamics)  // e.g. L-BFGS force evaluations
-    for (const auto& key : integrator_->value_keys())
+  if (dynamics) {
+    extra = " (" + integrator_->style_name() + ")";
+  } else {
+    for (const auto& key : integrator_->value_keys())  // e.g. L-BFGS force evaluations
       extra += ", " + key + " " + std::to_string(static_cast<long>(integrator_->value(key)));
-  if (!dynamics) {
     integrator_ = std::move(saved);
     if (saved_dt > 0) dt = saved_dt;  // else keep FIRE's last step as the scene's dt
   }
-  if (std::isfinite(ketol) && !dynamics) extra += ", kinetic energy " + g3(ke);
-  if (dynamics)
-    extra = " (" + integrator_->style_name() + ")" + extra + ", kinetic energy " + g3(ke) +
-            " (tolerance " + g3(ketol) + ")";
+  if (std::isfinite(ketol))
+    extra += ", kinetic energy " + g3(ke) + " (tolerance " + g3(ketol) + ")";
   if (verbose)
     std::printf("minimize: %ld %s steps%s, max |f| = %.3g (tolerance %.3g)\n", taken,
                 method == "fire"    ? "FIRE"

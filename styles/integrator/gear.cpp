@@ -171,11 +171,10 @@ class GearIntegrator : public IntegratorStyle {
         v[i] += (c_[1] / h) * delta;
         for (int k = 2; k < Q; ++k) rk[k][i] += c_[k] * delta;
         if (c.unit) {
-          // Coordinates::constrain inlined: back onto |q| = 1, derivatives tangent
-          Vec4& qi = q[i];
-          qi.normalize();
-          v[i] -= v[i].dot(qi) * qi;
-          for (int k = 2; k < Q; ++k) rk[k][i] -= rk[k][i].dot(qi) * qi;
+          std::array<Vec4*, 6> d{};
+          d[0] = &v[i];
+          for (int k = 2; k < Q; ++k) d[k - 1] = &rk[k][i];
+          c.constrain(i, {d[0], d[1], d[2], d[3], d[4]});
         }
       }
     }

@@ -665,9 +665,11 @@ void Simulation::write_thermo(bool header) {
           // A restart from a checkpoint (step > 0) redoes the steps the interrupted run
           // went on to after it: drop their rows, so the file stays one row per step, in
           // order. A new run from step 0 appends below the old one and drops nothing.
+          // The row of the checkpoint's own step stays: it was written from the same
+          // state, with the per-step counts (contacts) that a restart has not yet made.
           size_t keep = lines.size();
           double st = 0.0;
-          while (vals[0] > 0 && keep > 0 && step_of(lines[keep - 1], &st) && st >= vals[0]) --keep;
+          while (vals[0] > 0 && keep > 0 && step_of(lines[keep - 1], &st) && st > vals[0]) --keep;
           if (keep < lines.size()) {
             const std::string tmp = thermo.file + ".tmp";
             {
@@ -679,7 +681,7 @@ void Simulation::write_thermo(bool header) {
               throw InputError("cannot replace thermo file '" + thermo.file + "'");
             if (verbose)
               std::printf(
-                  "thermo: dropped %zu rows of %s from step %.0f on (written after the "
+                  "thermo: dropped %zu rows of %s after step %.0f (written after the "
                   "checkpoint this run continues from; they are redone)\n",
                   lines.size() - keep, thermo.file.c_str(), vals[0]);
             lines.resize(keep);

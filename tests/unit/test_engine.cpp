@@ -281,9 +281,22 @@ TEST(Thermo, ContinuedRunsWriteEachStepOnceAndInOrder) {
   {
     auto b = make(true);  // as a restart from the checkpoint of step 20
     b->step = 20;
+    b->time = 7.0;  // marks the rows this run writes
     b->run(RunOptions{10, 0, {}});
   }
   EXPECT_EQ(steps_in_file(), (std::vector<long>{0, 5, 10, 15, 20, 25, 30}));
+  {
+    // the row of the checkpoint's step is the first run's (a restart's first row would
+    // lack the per-step counts, such as contacts, that only a force evaluation makes)
+    std::ifstream in("thermo_once.csv");
+    std::string line;
+    std::vector<double> times;
+    std::getline(in, line);
+    while (std::getline(in, line)) times.push_back(std::stod(line.substr(line.find(',') + 1)));
+    ASSERT_EQ(times.size(), 7u);
+    EXPECT_NEAR(times[4], 0.02, 1e-12);
+    EXPECT_NEAR(times[5], 7.005, 1e-12);
+  }
   {
     // a restart from an older checkpoint (step 10): the rows the first run wrote after
     // it are redone, not repeated out of order

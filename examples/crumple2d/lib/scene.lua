@@ -81,7 +81,7 @@ function M.build(p)
   if output then
     -- a restarted run writes a new trajectory file rather than replacing the first
     local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
-    sim:dump("traj", "h5md", { file = traj, every = 50000,
+    sim:dump("traj", "h5md", { file = traj, every = slender.var("dump_every", 50000),
                                fields = { "position", "bend.plastic_curvature" } })
   end
   -- long runs: -v checkpoint_every=N writes <name>_restart.h5 every N steps;

@@ -87,7 +87,42 @@ save() {
     [[ -f "$f" ]] || continue
     { head -n 12 "$f"; echo "[... thermo rows, see thermo.csv ...]"; tail -n 40 "$f"; } > "$store/log/$(basename "$f")"
   done
+  segments "$store" "$work"
   du -sh "$store"
+}
+
+# segments.csv: one row per segment (one machine's sitting), from its log: the steps
+# it ran, its wall time (log name to last write; other jobs may have shared the
+# machine) and node-steps from the thermo rows, so a run's total cost adds up
+# across sessions. Rows of earlier segments, stored before, are kept.
+segments() {
+  local store="$1" work="$2" csv="$2/${OUT}_thermo.csv" out="$1/segments.csv" f
+  [[ -f "$csv" ]] || return 0
+  local tmp
+  tmp="$(mktemp)"
+  [[ -f "$out" ]] && tail -n +2 "$out" > "$tmp"
+  for f in "$work"/log/*.txt; do
+    [[ -f "$f" ]] || continue
+    local seg first last t0 t1
+    seg="$(basename "$f" .txt)"
+    first="$(awk '$1 ~ /^[0-9]+$/ { print $1; exit }' "$f")"
+    last="$(awk '$1 ~ /^[0-9]+$/ { s = $1 } END { print s }' "$f")"
+    [[ -n "$first" && -n "$last" ]] || continue
+    t0="$(date -d "${seg:0:4}-${seg:4:2}-${seg:6:2} ${seg:9:2}:${seg:11:2}:${seg:13:2}" +%s)"
+    t1="$(stat -c %Y "$f")"
+    local ns
+    ns="$(awk -F, -v a="$first" -v b="$last" '
+      NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "count.nodes") c = i; next }
+      $1 + 0 <= a { prev = $1 + 0; next }
+      $1 + 0 <= b { n += $c * ($1 - prev); prev = $1 + 0 }
+      END { printf "%.0f", n }' "$csv")"
+    grep -v "^$seg," "$tmp" > "$tmp.2" || true
+    mv "$tmp.2" "$tmp"
+    awk -v s="$seg" -v a="$first" -v b="$last" -v w="$((t1 - t0))" -v n="$ns" \
+      'BEGIN { printf "%s,%s,%s,%d,%s,%.3g\n", s, a, b, w, n, (w > 0 ? n / w : 0) }' >> "$tmp"
+  done
+  { echo "segment,start_step,end_step,wall_s,node_steps,node_steps_per_s"; sort "$tmp"; } > "$out"
+  rm -f "$tmp"
 }
 
 status() {

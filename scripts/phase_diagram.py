@@ -16,6 +16,7 @@ and <out>_phi.png (mean jamming density).
 
   /usr/bin/python3 scripts/phase_diagram.py                      # the thesis' sweep, f = 50
   /usr/bin/python3 scripts/phase_diagram.py --work /scratch/pd50  # ... continuing cut runs
+  /usr/bin/python3 scripts/phase_diagram.py --work /scratch/pd50 --settle  # before moving it
   /usr/bin/python3 scripts/phase_diagram.py --f 10 --yields 0 0.02 0.04 0.06 \\
       --mus 0 0.2 0.4 0.6 --seeds 1 --out docs/crumple2d/phase_diagram_f10
 """
@@ -92,6 +93,21 @@ def run_once(a, y, mu, seed, dt):
     if row["status"] != "failed" or "timeout" not in row.get("error", ""):
         shutil.rmtree(tmp, ignore_errors=True)  # finished: the checkpoint is no longer needed
     return row
+
+
+def settle(work):
+    for d in sorted(os.listdir(work)) if work and os.path.isdir(work) else []:
+        ckpt, state_file = os.path.join(work, d, "classic_restart.h5"), os.path.join(work, d, "parts.json")
+        if not (os.path.exists(ckpt) and os.path.exists(state_file)):
+            continue
+        state = json.load(open(state_file))
+        if "start" in state and os.path.getmtime(ckpt) > state["start"]:
+            state["wall"] += os.path.getmtime(ckpt) - state["start"]
+        state.pop("start", None)
+        with open(state_file + ".tmp", "w") as fh:
+            json.dump(state, fh)
+        os.replace(state_file + ".tmp", state_file)
+        print(f"{d}: {state['parts']} part(s), {state['wall']:.0f} s up to its last checkpoint")
 
 
 def execute(a, args, cwd):
@@ -199,7 +215,14 @@ def main():
                     help="copy the binary's decks to a temporary folder first, so edits during a "
                          "long sweep cannot change it")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "crumple2d", "phase_diagram_f50"))
+    ap.add_argument("--settle", action="store_true",
+                    help="only fold each kept run's time up to its last checkpoint into its wall "
+                         "time and exit: before the --work folder moves to another machine (a "
+                         "fresh clone gives the checkpoint a new modification time)")
     a = ap.parse_args()
+    if a.settle:
+        settle(a.work)
+        return
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     path = a.out + ".csv"
     rows = load(path)

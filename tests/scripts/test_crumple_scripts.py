@@ -2,6 +2,7 @@
 """Checks the fits of scripts/crumple_stats.py on synthetic data with known answers,
 and the morphology classes of scripts/phase_diagram.py."""
 import csv
+import json
 import os
 import subprocess
 import sys
@@ -112,6 +113,17 @@ def sweep_resumes_interrupted_runs():
         first = read_csv(os.path.join(tmp, "pd.csv"))
         assert first[0]["status"] == "failed" and "timeout" in first[0]["error"], first
         assert len(os.listdir(os.path.join(tmp, "work"))) == 1  # kept for the next part
+        # --settle before the folder moves to another machine: the first part's time up
+        # to its checkpoint is kept, and the checkpoint's new modification time after a
+        # fresh clone (here: a day later) adds nothing
+        run_dir = os.path.join(tmp, "work", os.listdir(os.path.join(tmp, "work"))[0])
+        out = subprocess.run(common + ["--settle"], capture_output=True, text=True)
+        assert out.returncode == 0 and "1 part(s)" in out.stdout, (out.stdout, out.stderr)
+        with open(os.path.join(run_dir, "parts.json")) as fh:
+            state = json.load(fh)
+        assert "start" not in state and 0.0 < state["wall"] < 1.0, state
+        later = os.path.getmtime(os.path.join(run_dir, "classic_restart.h5")) + 86400
+        os.utime(os.path.join(run_dir, "classic_restart.h5"), (later, later))
         out = subprocess.run(common + ["--retry-failed"], capture_output=True, text=True)
         assert out.returncode == 0, out.stderr
         rows = read_csv(os.path.join(tmp, "pd.csv"))

@@ -41,7 +41,11 @@ start() {
     exit 1
   fi
   mkdir -p "$work/bin" "$work/log"
-  cp "$root/build/slender" "$root/build/libslender.so" "$work/bin/"
+  # SLENDER_BIN: another binary (the tests use a stand-in); its libslender.so, if any,
+  # goes with it
+  local bin="${SLENDER_BIN:-$root/build/slender}"
+  cp "$bin" "$work/bin/slender"
+  [[ -f "$(dirname "$bin")/libslender.so" ]] && cp "$(dirname "$bin")/libslender.so" "$work/bin/"
   rm -rf "$work/examples" && cp -r "$root/examples" "$work/examples"
   cd "$work"
   local restart=()
@@ -53,7 +57,7 @@ start() {
   fi
   [[ -f "${OUT}_restart.h5" ]] && restart=(-v "restart=${OUT}_restart.h5")
   local log
-  log="log/$(date +%Y%m%d-%H%M%S).txt"
+  log="log/$(date +%Y%m%d-%H%M%S)-$$.txt"
   echo "long_run: $name in $work: bin/slender examples/${DECK#examples/} $ARGS ${restart[*]:-} > $log"
   # shellcheck disable=SC2086
   local rc=0

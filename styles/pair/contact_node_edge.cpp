@@ -92,7 +92,16 @@ class NodeEdgeContactPair : public PairStyle {
       if (t == 0.0 && (ed.index > 0 || chains_[static_cast<size_t>(ed.chain)]->closed)) continue;
       const Vec3 p = x[ed.a] + t * seg;
       const Vec3 r = x[c.node] - p;
-      double dist = r.norm();
+      // most listed pairs are apart: skip them before the root and the side test
+      // (d2_apart_ lies a few ulps above d^2, so the exact test below decides the rest)
+      const double r2 = r.squaredNorm();
+      if (r2 > d2_apart_) {
+        c.st.stick = false;
+        c.st.xi.setZero();
+        c.side = 0;
+        continue;
+      }
+      double dist = std::sqrt(r2);
       // which side of the edge the node is on; a contact remembers the side it was
       // made from, so an overloaded node pushed past the centre line is pushed back
       // (overlap d + distance) instead of being pulled through the wire
@@ -272,6 +281,7 @@ class NodeEdgeContactPair : public PairStyle {
 
   bool tails_from_ids_ = false;
   double d_;
+  double d2_apart_ = d_ * d_ * (1.0 + 1e-14);  // |r|^2 above this: |r| >= d for sure
   ContactLaw law_;
   RebuildSchedule schedule_;
   int exclude_;

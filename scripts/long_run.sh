@@ -109,8 +109,9 @@ segments() {
     [[ -f "$f" ]] || continue
     local seg first last t0 t1
     seg="$(basename "$f" .txt)"
-    first="$(awk '$1 ~ /^[0-9]+$/ { print $1; exit }' "$f")"
-    last="$(awk '$1 ~ /^[0-9]+$/ { s = $1 } END { print s }' "$f")"
+    # the console prints steps as %.7g (1.301e+07)
+    first="$(awk '$1 ~ /^[0-9]+(\.[0-9]+)?(e\+[0-9]+)?$/ { printf "%d", $1; exit }' "$f")"
+    last="$(awk '$1 ~ /^[0-9]+(\.[0-9]+)?(e\+[0-9]+)?$/ { s = $1 } END { if (s != "") printf "%d", s }' "$f")"
     [[ -n "$first" && -n "$last" ]] || continue
     t0="$(date -d "${seg:0:4}-${seg:4:2}-${seg:6:2} ${seg:9:2}:${seg:11:2}:${seg:13:2}" +%s)"
     t1="$(stat -c %Y "$f")"

@@ -13,8 +13,9 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# Stand-in for slender: 10 thermo rows per segment (100 steps each, nodes = 5 + step/100),
-# a checkpoint holding the last step; the first segment dies after its checkpoint.
+# Stand-in for slender: 10 thermo rows per segment (a million steps each, nodes = 5 +
+# step/1e6), printed on the console as the engine does (%14.7g: 1.3e+07), a checkpoint
+# holding the last step; the first segment dies after its checkpoint.
 FAKE = """#!{python}
 import sys
 args = sys.argv[1:]
@@ -30,16 +31,16 @@ with open("demo_thermo.csv", "w") as fh:
     for r in rows:
         fh.write(r + "\\n")
     for k in range(0, 11):
-        step = start + 100 * k
+        step = start + 1000000 * k
         # the checkpoint's own row is on the console, and already in the file
         if not (restart and k == 0):
-            fh.write(f"{{step}},{{step / 1e4}},{{5 + step // 100}}\\n")
-        print(f"  {{step}}  {{step / 1e4}}  {{5 + step // 100}}")
-        if step == start + 600:
+            fh.write(f"{{step}},{{step / 1e8}},{{5 + step // 1000000}}\\n")
+        print(f"{{step:14.7g}} {{step / 1e8:14.7g}} {{5 + step // 1000000:14.7g}}")
+        if step == start + 6000000:
             open("demo_restart.h5", "w").write(str(step))
 if not restart:
     sys.exit(3)  # cut off: the rows after step 600 are redone by the next segment
-print('{{"case": "demo", "steps": %d}}' % (start + 1000))
+print('{{"case": "demo", "steps": %d}}' % (start + 10000000))
 """
 
 
@@ -57,7 +58,7 @@ def main():
         shutil.copy(os.path.join(ROOT, "scripts", "long_run.sh"), os.path.join(repo, "scripts"))
         open(os.path.join(repo, "examples", "demo.lua"), "w").write("-- stand-in\n")
         with open(os.path.join(repo, "runs", "demo", "run.conf"), "w") as fh:
-            fh.write('DECK=examples/demo.lua\nOUT=demo\nARGS="-v checkpoint_every=600"\n')
+            fh.write('DECK=examples/demo.lua\nOUT=demo\nARGS="-v checkpoint_every=6000000"\n')
         fake = os.path.join(tmp, "fake_slender")
         with open(fake, "w") as fh:
             fh.write(FAKE.format(python=sys.executable))
@@ -72,7 +73,7 @@ def main():
         assert out.returncode == 3, (out.stdout, out.stderr)  # the cut-off segment
         assert run("save", "demo").returncode == 0
         store = os.path.join(repo, "runs", "demo")
-        assert open(os.path.join(store, "restart.h5")).read() == "600"
+        assert open(os.path.join(store, "restart.h5")).read() == "6000000"
         assert not os.path.exists(os.path.join(store, "finished"))
         # another machine: nothing in its work folder but what the repository holds
         env2 = dict(env, SLENDER_RUNS=os.path.join(tmp, "machine2"))
@@ -82,15 +83,16 @@ def main():
         assert run("save", "demo", env=env2).returncode == 0
         with open(os.path.join(store, "thermo.csv")) as fh:
             steps = [int(r["step"]) for r in csv.DictReader(fh)]
-        assert steps == list(range(0, 1700, 100)), steps  # one row per step, in order
+        assert steps == list(range(0, 17000000, 1000000)), steps  # one row per step, in order
         with open(os.path.join(store, "segments.csv")) as fh:
             segs = list(csv.DictReader(fh))
         # both segments, the first one's steps past its checkpoint included (they cost time)
-        assert [(int(s["start_step"]), int(s["end_step"])) for s in segs] == [(0, 1000), (600, 1600)], segs
-        # node-steps of the second segment: rows 700 ... 1600, 100 steps each at 5 + step/100 nodes
-        assert int(segs[1]["node_steps"]) == sum(100 * (5 + s // 100) for s in range(700, 1700, 100)), segs
+        assert [(int(s["start_step"]), int(s["end_step"])) for s in segs] == \
+            [(0, 10000000), (6000000, 16000000)], segs
+        # node-steps of the second segment: rows 7e6 ... 16e6, 1e6 steps each at 5 + step/1e6 nodes
+        assert int(segs[1]["node_steps"]) == sum(1000000 * (5 + k) for k in range(7, 17)), segs
         assert os.path.exists(os.path.join(store, "finished"))
-        assert '"steps": 1600' in open(os.path.join(store, "result.json")).read()
+        assert '"steps": 16000000' in open(os.path.join(store, "result.json")).read()
         # a finished run is not started again
         out = run("start", "demo", env=dict(env, SLENDER_RUNS=os.path.join(tmp, "machine3")))
         assert out.returncode == 1 and "has finished" in out.stderr, (out.stdout, out.stderr)

@@ -141,8 +141,10 @@ status() {
     if [[ -f "$d/finished" ]]; then
       echo "$name: finished $(cat "$d/finished")"
     elif [[ -f "$csv" ]]; then
-      echo "$name: $(head -1 "$csv")"
-      echo "$name: $(tail -1 "$csv")"
+      awk -F, -v n="$name" 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+        { last = $0 } END { split(last, v, ",")
+          printf "%s: step %d, phi %.4f, force (averaged) %.4g, %d nodes\n", n, v[1],
+                 v[c["feed.phi"]], v[c["feed.force_avg"]], v[c["count.nodes"]] }' "$csv"
     else
       echo "$name: not started"
     fi

@@ -1,8 +1,9 @@
-// Unit tests of the bond styles: spring and bend2d.
+// Unit tests of the bond styles: spring and bend2d, and the 2D hinge angle.
 #include <cmath>
 #include <random>
 
 #include "helpers.hpp"
+#include "hinge2d.hpp"
 
 using namespace slender;
 using namespace slender::test;
@@ -193,4 +194,26 @@ TEST(DamperBond, StraightChainSlidingAlongItselfFeelsNoForce) {
   Vec3 sum = Vec3::Zero();
   for (auto& f : drag.nodes().f) sum += f;
   EXPECT_NEAR(sum.z(), 6 * 5.0 * 0.03, 1e-12);  // grows with the chain's length
+}
+
+// The hinge angle's series branch (|turn| up to atan 0.2) agrees with std::atan2 to a
+// few units in the last place over the whole branch and at its edge; outside it is
+// std::atan2 itself.
+TEST(HingeAngle, SeriesBranchAgreesWithAtan2ToRounding) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> ratio(-0.2, 0.2), scale(-8.0, 8.0);
+  double worst_ulps = 0.0;
+  for (int i = 0; i < 200000; ++i) {
+    // ratios spread over many decades, the largest turns included
+    const double t = i % 4 == 0 ? ratio(rng) : ratio(rng) * std::pow(10.0, -8.0 * (i % 4) / 3.0);
+    const double d = std::pow(10.0, scale(rng)), c = t * d;
+    const double ref = std::atan2(c, d);
+    const double ulp = std::nextafter(std::abs(ref), INFINITY) - std::abs(ref);
+    worst_ulps = std::max(worst_ulps, std::abs(hinge_angle(c, d) - ref) / ulp);
+  }
+  EXPECT_LE(worst_ulps, 4.0);
+  for (double c : {0.2, -0.2, 0.2000001, -5.0, 1e-300})
+    for (double d : {1.0, -1.0, 0.0}) EXPECT_NEAR(hinge_angle(c, d), std::atan2(c, d), 3e-16);
+  EXPECT_EQ(hinge_angle(0.0, 1.0), 0.0);
+  EXPECT_EQ(hinge_angle(0.3, 1.0), std::atan2(0.3, 1.0));  // outside the branch: atan2 itself
 }

@@ -110,8 +110,9 @@ class BendHysteresisBond : public ChainBondStyle {
   // W - dE = dkappa_pl (g(x_y) - K_h x_y) + 1/2 K_h (1 - K_h/K_e) d(kappa_pl^2).
   double moment(double kappa, double& kpl, double Ke, double* stored = nullptr,
                 double* dissipated = nullptr) const {
+    // K_h / K_e is the hardening ratio: no division per hinge (they set this loop's pace)
     const double Kh = ratio_ * Ke;
-    const double x0 = -Kh * kpl / Ke;
+    const double x0 = -ratio_ * kpl;
     double xp = ky_, xm = -ky_;
     if (guard_) {
       xp = std::max(ky_, x0 + delta_);
@@ -128,7 +129,7 @@ class BendHysteresisBond : public ChainBondStyle {
     }
     double g = Ke * x, cubic = 0.0;
     if (delta_ > 0) {
-      const double xe = xp - delta_, xem = xm + delta_, c = (Ke - Kh) / (2 * delta_);
+      const double xe = xp - delta_, xem = xm + delta_, c = Ke * curve_;
       if (x > xe) {
         const double y = x - xe;  // (std::pow here cost 12 % of a crumpling run)
         g -= c * y * y;
@@ -143,11 +144,11 @@ class BendHysteresisBond : public ChainBondStyle {
     if (dissipated) {
       *dissipated = kpl == kpl_old ? 0.0
                                    : (kpl - kpl_old) * (g - Kh * x) +
-                                         0.5 * Kh * (1 - Kh / Ke) * (kpl * kpl - kpl_old * kpl_old);
+                                         0.5 * Kh * (1 - ratio_) * (kpl * kpl - kpl_old * kpl_old);
     }
     if (stored) {
       // zero-moment point of the (possibly just updated) branch
-      const double z = -Kh * kpl / Ke;
+      const double z = -ratio_ * kpl;
       *stored = 0.5 * Ke * (x - z) * (x - z) + cubic;
     }
     return M;
@@ -210,6 +211,7 @@ class BendHysteresisBond : public ChainBondStyle {
   }
 
   double k_, ky_, ratio_, delta_;
+  double curve_ = delta_ > 0 ? (1 - ratio_) / (2 * delta_) : 0.0;  // c / K_e of the transition
   bool guard_;
   double gamma_;
   Property<double>* kpl_ = nullptr;

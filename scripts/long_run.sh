@@ -135,6 +135,7 @@ status() {
   for d in "$root"/runs/*/; do
     name="$(basename "$d")"
     [[ $# -gt 0 && "$1" != "$name" ]] && continue
+    [[ -f "$d/run.conf" ]] || continue  # a sweep's folder (runs/pd50), not a deck run
     conf_of "$name"
     local csv="$runs_root/$name/${OUT}_thermo.csv"
     [[ -f "$csv" ]] || csv="$d/thermo.csv"

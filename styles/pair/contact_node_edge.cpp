@@ -96,9 +96,7 @@ class NodeEdgeContactPair : public PairStyle {
       // (d2_apart_ lies a few ulps above d^2, so the exact test below decides the rest)
       const double r2 = r.squaredNorm();
       if (r2 > d2_apart_) {
-        c.st.stick = false;
-        c.st.xi.setZero();
-        c.side = 0;
+        release(c);
         continue;
       }
       double dist = std::sqrt(r2);
@@ -112,9 +110,7 @@ class NodeEdgeContactPair : public PairStyle {
       const bool interior = t > 0.0 && t < 1.0;
       const bool crossed = interior && c.prev && c.side != 0 && side != c.side && dist < d_;
       if ((dist >= d_ && !crossed) || dist == 0.0) {
-        c.st.stick = false;
-        c.st.xi.setZero();
-        c.side = 0;
+        release(c);
         continue;
       }
       Vec3 nrm = r / dist;
@@ -193,6 +189,12 @@ class NodeEdgeContactPair : public PairStyle {
     int side = 0;  // +1 / -1: side of the edge the contact was made from; 0: none
   };
 
+  // a listed pair out of contact forgets its stick spring and its side
+  static void release(Entry& c) {
+    c.st.stick = false;
+    c.st.xi.setZero();
+    c.side = 0;
+  }
   bool topology_changed(const Simulation&) const {
     size_t ne = 0;
     for (auto* c : chains_) ne += static_cast<size_t>(c->n_edges());

@@ -62,10 +62,17 @@ start() {
   # shellcheck disable=SC2086
   local rc=0
   LD_LIBRARY_PATH="$work/bin" ./bin/slender "examples/${DECK#examples/}" $ARGS ${restart[@]+"${restart[@]}"} > "$log" 2>&1 || rc=$?
-  # a run that ends by itself (jammed, max_phi, max_steps) is finished; the
-  # result line is the deck's JSON summary
+  # a run that ends by itself (jammed, max_phi, max_steps) is finished; its summary
+  # is the deck's last `RESULT key=value ...` line (slender.result), kept as JSON
   if [[ $rc -eq 0 ]]; then
-    grep '^{' "$log" | tail -1 > result.json || true
+    grep '^RESULT ' "$log" | tail -1 | awk '{
+      printf "{"
+      for (i = 2; i <= NF; ++i) {
+        k = $i; sub(/=.*/, "", k); v = substr($i, length(k) + 2)
+        if (v !~ /^[-+]?([0-9]+[.]?[0-9]*|[.][0-9]+)([eE][-+]?[0-9]+)?$/) v = "\"" v "\""
+        printf "%s\"%s\": %s", (i > 2 ? ", " : ""), k, v
+      }
+      print "}" }' > result.json
     echo "$(date -u +%F) $(tail -c 300 result.json)" > finished
   fi
   return $rc

@@ -6,6 +6,10 @@ sweep resumes where it stopped) and <out>.png (phi_max against a/R with a power-
 fit phi_max = A (a/R)^p per setup, fitted on the seed means).
 
   /usr/bin/python3 scripts/pack3d_sweep.py --setups low_torsion --R 4 5 10 13 20 --seeds 1 2 3
+
+A run too long for one sitting (scripts/long_run.sh, runs/<name>/) joins the table once it
+has finished: --add-long-run runs/lt20 takes its result.json and, for the cost, the wall
+time and node-steps summed over all its segments (runs/<name>/segments.csv).
 """
 import argparse
 import concurrent.futures as cf
@@ -46,6 +50,27 @@ def run_one(a, setup, R, seed):
     else:
         row["status"] = "failed"
         row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+    return row
+
+
+def long_run_row(store):
+    """One table row from a finished long run: the deck's summary, with the wall time and
+    node-steps/s of the whole run (every sitting, steps redone after a restart included)
+    instead of those of its last sitting."""
+    import json
+    path = os.path.join(store, "result.json")
+    if not os.path.exists(os.path.join(store, "finished")) or not os.path.exists(path):
+        raise SystemExit(f"pack3d_sweep: {store} has not finished (no finished/result.json)")
+    with open(path) as fh:
+        res = json.load(fh)
+    with open(os.path.join(store, "segments.csv")) as fh:
+        seg = list(csv.DictReader(fh))
+    wall = sum(float(r["wall_s"]) for r in seg)
+    node_steps = sum(float(r["node_steps"]) for r in seg)
+    setup = res["case"].split("/")[-1]
+    row = {k: res[k] for k in FIELDS if k in res}
+    row.update(setup=setup, a_over_R=1.0 / float(res["R"]), wall_s=wall,
+               node_steps_per_s=node_steps / wall, status="ok")
     return row
 
 
@@ -114,10 +139,26 @@ def main():
     ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                     help="extra -v override for every run (repeatable)")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "pack3d", "phi_max"))
+    ap.add_argument("--add-long-run", nargs="+", default=[], metavar="runs/NAME",
+                    help="add finished long runs (scripts/long_run.sh) to the table and redraw")
     a = ap.parse_args()
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     path = a.out + ".csv"
     rows = load(path)
+    if a.add_long_run:
+        new = [long_run_row(store) for store in a.add_long_run]
+        keep = [r for r in rows if not any(r["setup"] == n["setup"] and float(r["R"]) == float(n["R"])
+                                           and int(r["seed"]) == int(n["seed"]) for n in new)]
+        with open(path, "w", newline="") as fh:
+            w = csv.DictWriter(fh, FIELDS)
+            w.writeheader()
+            w.writerows(keep + new)
+        for n in new:
+            print(f"{n['setup']} R {n['R']} seed {n['seed']}: phi {n['phi']}, {n['steps']} steps, "
+                  f"{n['wall_s']:.0f} s, {n['node_steps_per_s']:.3g} node-steps/s")
+        for setup, A, p in draw(load(path), a.out):
+            print(f"{setup}: phi_max = {A:.4g} (a/R)^{p:.3f}")
+        return
     done = {(r["setup"], float(r["R"]), int(r["seed"])) for r in rows if r["status"] == "ok"}
     todo = [(s, R, k) for s in a.setups for R in a.R for k in a.seeds if (s, R, k) not in done]
     print(f"{len(done)} runs done, {len(todo)} to go -> {path}", flush=True)

@@ -5,6 +5,7 @@ fresh work folder (another machine) continues from the stored checkpoint and the
 rows, each segment's steps and node-steps add up in segments.csv, and a run that
 ended by itself is marked finished and not started again."""
 import csv
+import json
 import os
 import shutil
 import subprocess
@@ -40,7 +41,7 @@ with open("demo_thermo.csv", "w") as fh:
             open("demo_restart.h5", "w").write(str(step))
 if not restart:
     sys.exit(3)  # cut off: the rows after step 600 are redone by the next segment
-print('{{"case": "demo", "steps": %d}}' % (start + 10000000))
+print("RESULT case=demo/x phi=0.25 steps=%d" % (start + 10000000))
 """
 
 
@@ -92,7 +93,9 @@ def main():
         # node-steps of the second segment: rows 7e6 ... 16e6, 1e6 steps each at 5 + step/1e6 nodes
         assert int(segs[1]["node_steps"]) == sum(1000000 * (5 + k) for k in range(7, 17)), segs
         assert os.path.exists(os.path.join(store, "finished"))
-        assert '"steps": 16000000' in open(os.path.join(store, "result.json")).read()
+        # the deck's RESULT line, as JSON
+        with open(os.path.join(store, "result.json")) as fh:
+            assert json.load(fh) == {"case": "demo/x", "phi": 0.25, "steps": 16000000}
         # a finished run is not started again
         out = run("start", "demo", env=dict(env, SLENDER_RUNS=os.path.join(tmp, "machine3")))
         assert out.returncode == 1 and "has finished" in out.stderr, (out.stdout, out.stderr)

@@ -756,6 +756,10 @@ void Simulation::run(const RunOptions& opt) {
     if (!stop_reason_.empty()) {
       if (verbose) std::printf("run stopped at step %ld: %s\n", step, stop_reason_.c_str());
       if (thermo.every > 0 && step % thermo.every != 0) write_thermo(false);
+      // the state a run stopped in (jammed, a threshold) is its result: every dump
+      // (trajectory, checkpoint) gets it, on or off its period
+      for (auto& d : dumps_)
+        if (d->every() > 0 && step % d->every() != 0) d->write(*this);
       break;
     }
     if (opt.callback && opt.every > 0 && k % opt.every == 0) {

@@ -350,6 +350,30 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   std::remove((file + ".xdmf").c_str());
 }
 
+TEST(H5mdDump, ARunThatStopsWritesItsLastStateOffThePeriod) {
+  // a jam (any request_stop) ends the run between two frames: the stopped state is
+  // the run's result, so the trajectory gets it as its last frame
+  const std::string file = "test_dump_stop.h5";
+  {
+    Simulation sim(2, 3);
+    sim.verbose = false;
+    sim.add_chain("w", wiggly_chain(7, 2, 3), 1.0, false);
+    sim.add_bond("spring", P({{"k", 50.0}}));
+    sim.set_integrator("verlet", P({{"dt", 0.01}}));
+    sim.add_dump("d", "h5md", P({{"file", file}, {"every", 10.0}}));
+    sim.run(RunOptions{50, 1, [](Simulation& s) {
+                         if (s.step == 23) s.request_stop("a threshold");
+                         return false;
+                       }});
+    EXPECT_EQ(sim.step, 24);
+  }
+  auto f = h5::open_file(file, false);
+  EXPECT_EQ(h5::read_doubles(f, "particles/all/position/step"),
+            (std::vector<double>{0, 10, 20, 24}));
+  std::remove(file.c_str());
+  std::remove((file + ".xdmf").c_str());
+}
+
 TEST(Checkpoint, RestartIsBitIdenticalAndRejectsOtherScenes) {
   auto make = [] {
     auto s = std::make_unique<Simulation>(2, 9);

@@ -100,11 +100,11 @@ def draw(rows, out):
         mean = [np.mean([float(r["phi"]) for r in ok if float(r["R"]) == R]) for R in Rs]
         std = [np.std([float(r["phi"]) for r in ok if float(r["R"]) == R]) for R in Rs]
         x = 1.0 / np.array(Rs)
-        ax.errorbar(x, mean, yerr=std, fmt="o", label=setup)
+        bars = ax.errorbar(x, mean, yerr=std, fmt="o", label=setup)
         if len(Rs) >= 3:
             A, p = fit_power(x, np.array(mean))
             xs = np.geomspace(x.min(), x.max(), 50)
-            ax.plot(xs, A * xs ** p, "-", label=f"{setup}: {A:.3g} (a/R)^{p:.2f}")
+            ax.plot(xs, A * xs ** p, "-", color=bars[0].get_color(), label=f"{setup}: {A:.3g} (a/R)^{p:.2f}")
             summary.append((setup, A, p))
     ax.set_xscale("log")
     ax.set_yscale("log")

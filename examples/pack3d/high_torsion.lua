@@ -3,8 +3,8 @@
 -- nozzle, so torsion builds up as it is fed into the sphere; stop at the force
 -- threshold of lib/scene.lua.
 -- Expected run time: R = 4 (fast mode, -v R=4): ~20 s; R = 10: ~1 h (38.1 M steps);
--- R = 20: ~2 days (projected: steps and nodes both grow as R^3); about 10 h with
--- -v coupling_factor=2 -v rot_inertia_factor=4 (38 M steps of about 90 M took 3.5 h).
+-- R = 20: ~2 days (projected: steps and nodes both grow as R^3); 6 h with
+-- -v coupling_factor=2 -v rot_inertia_factor=4 (63.7 M steps to its jam at phi = 0.385).
 -- Thesis parameters: a = 1, Y = 1000, nu = 0.33, mu_s = 0.2, mu_d = 0.18, intrinsic
 -- radius of curvature R_i = 100 (kbar = (0, 1/R_i, 0), MODELS.md §4.5: the thesis'
 -- "k_y = 0.001" contradicts its R_i = 100; -v R_i=1000 runs that reading).

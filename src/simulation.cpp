@@ -726,14 +726,20 @@ void Simulation::write_thermo(bool header) {
 
 void Simulation::after_step(long k, bool last) {
   const bool thermo_now = thermo.every > 0 && step % thermo.every == 0;
+  // the state a run stopped in (jammed, a threshold) is its result: every dump
+  // (trajectory, checkpoint) gets it, on or off its period
+  const bool stopping = !stop_reason_.empty();
+  auto due = [&](const DumpStyle& d) {
+    return d.every() > 0 && (stopping || step % d.every() == 0);
+  };
   bool dump_now = false;
-  for (auto& d : dumps_) dump_now = dump_now || (d->every() > 0 && step % d->every() == 0);
+  for (auto& d : dumps_) dump_now = dump_now || due(*d);
   // Outputs only ever see a state the guard has passed: no NaN in files.
   if ((guard.every > 0 && k % guard.every == 0) || thermo_now || dump_now || last) check_guard(k);
   if (thermo_now) write_thermo(false);
   if (dump_now)
     for (auto& d : dumps_)
-      if (d->every() > 0 && step % d->every() == 0) d->write(*this);
+      if (due(*d)) d->write(*this);
 }
 
 void Simulation::run(const RunOptions& opt) {
@@ -756,10 +762,6 @@ void Simulation::run(const RunOptions& opt) {
     if (!stop_reason_.empty()) {
       if (verbose) std::printf("run stopped at step %ld: %s\n", step, stop_reason_.c_str());
       if (thermo.every > 0 && step % thermo.every != 0) write_thermo(false);
-      // the state a run stopped in (jammed, a threshold) is its result: every dump
-      // (trajectory, checkpoint) gets it, on or off its period
-      for (auto& d : dumps_)
-        if (d->every() > 0 && step % d->every() != 0) d->write(*this);
       break;
     }
     if (opt.callback && opt.every > 0 && k % opt.every == 0) {

@@ -24,6 +24,7 @@ import os
 import subprocess
 import tempfile
 
+import h5py
 import numpy as np
 
 import render_wire2d
@@ -48,12 +49,12 @@ def measure(x, y, r):
 
 
 def run(slender, examples, deck, f, v, feed, seed):
-    import h5py
-    # phi counts the wire inside the cavity: the straight start spans 2r (MODELS.md §2.7)
+    # phi counts the wire inside the cavity (fix inject/wire): the straight start spans 2r
     length = 2 * f + 2 * feed * f
     max_phi = length / (math.pi * f * f)
     args = [slender, "-q", os.path.join(examples, "crumple2d", deck + ".lua"), "-v", f"f={f}",
             "-v", f"s={v}", "-v", f"seed={seed}", "-v", f"max_phi={max_phi}",
+            # no periodic frames: the dump writes the state the run stops in
             "-v", "dump_every=1000000000000"]
     with tempfile.TemporaryDirectory() as tmp:
         p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
@@ -92,8 +93,7 @@ def main():
     rows = [r for r, _ in results]
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     keys = ["f", "speed", "seed", "Pi", "steps", "peak_x_over_r", "amplitude", "half_waves", "central",
-            "status",
-            "error"]
+            "status", "error"]
     with open(a.out + ".csv", "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
         w.writeheader()
@@ -104,8 +104,7 @@ def main():
             continue
         print(f"f = {r['f']:g}, v = {r['speed']:g}: Pi = {r['Pi']:.3f}, peak at |x|/r = "
               f"{r['peak_x_over_r']:.2f}, amplitude {r['amplitude']:.1f} d, {r['half_waves']} half-waves, "
-              f"central share {r['central']:.2f}, "
-              f"{r['steps']} steps")
+              f"central share {r['central']:.2f}, {r['steps']} steps")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

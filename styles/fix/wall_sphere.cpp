@@ -78,11 +78,20 @@ class SphereWallFix : public FixStyle {
     total_ = 0.0;
     contacts_ = 0;
     const Property<int>* mask = sim.dof_mask();
+    // below this squared distance from the centre a node is clear of the wall by more than
+    // a part in 1e-9 of r, so the exact test below would reject it too
+    const double clear = (r_ - 0.5 * d_) * (1.0 - 1e-9);
+    const double clear2 = clear > 0 ? clear * clear : -1.0;
     for (int i : nodes_) {
       // fully kinematic nodes (clamped, or driven in an injection channel) feel
       // no wall: their forces are discarded and must not enter any measurement
       if (mask && (*mask)[i] == 7) continue;
       const Vec3 rel = x[i] - c_;
+      // most nodes of a packing are well inside: skip them before the root
+      if (inside_ && rel.squaredNorm() < clear2) {
+        if (law_.frictional() && (*state_)[i]) (*state_)[i] = 0, (*xi_)[i].setZero();
+        continue;
+      }
       const double dist = rel.norm();
       const double delta = inside_ ? dist + 0.5 * d_ - r_ : r_ + 0.5 * d_ - dist;
       FrictionState st;

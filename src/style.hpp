@@ -17,6 +17,17 @@ class Simulation;
 // Named arrays a style saves in checkpoints so a restart is bit-identical.
 using StateMap = std::map<std::string, std::vector<double>>;
 
+// What a style measured with the forces a checkpoint restores (contact counts, force sums):
+// the forces are not recomputed on a restart, so these come back with them.
+inline void save_measured(StateMap& st, std::vector<double> values) {
+  st["measured"] = std::move(values);
+}
+// The saved values, or none if the checkpoint has no n of them (older files).
+inline const std::vector<double>* load_measured(const StateMap& st, std::size_t n) {
+  auto it = st.find("measured");
+  return it != st.end() && it->second.size() == n ? &it->second : nullptr;
+}
+
 class Style {
  public:
   virtual ~Style() = default;

@@ -134,13 +134,9 @@ class SphereWallFix : public FixStyle {
     if (key == "contacts") return contacts_;
     return FixStyle::value(key);
   }
-  // The forces are restored, not recomputed, on a restart: so are the sums measured with them.
-  void save_state(StateMap& st) const override { st["measured"] = {total_, double(contacts_)}; }
+  void save_state(StateMap& st) const override { save_measured(st, {total_, double(contacts_)}); }
   void load_state(const StateMap& st) override {
-    if (auto it = st.find("measured"); it != st.end() && it->second.size() == 2) {
-      total_ = it->second[0];
-      contacts_ = static_cast<int>(it->second[1]);
-    }
+    if (auto* m = load_measured(st, 2)) total_ = (*m)[0], contacts_ = static_cast<int>((*m)[1]);
   }
 
  private:

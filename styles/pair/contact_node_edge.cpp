@@ -158,8 +158,7 @@ class NodeEdgeContactPair : public PairStyle {
       flat.insert(flat.end(), {double(e.node), double(e.edge), e.st.xi.x(), e.st.xi.y(),
                                e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0, double(e.side)});
     st["history"] = flat;
-    // the forces are restored, not recomputed, so the count measured with them is too
-    st["contacts"] = {double(contacts_)};
+    save_measured(st, {double(contacts_)});
     schedule_.save(st);
   }
   void load_state(const StateMap& st) override {
@@ -175,8 +174,7 @@ class NodeEdgeContactPair : public PairStyle {
       e.side = static_cast<int>(h[k + 6]);
       list_.push_back(e);
     }
-    if (auto it = st.find("contacts"); it != st.end() && !it->second.empty())
-      contacts_ = static_cast<int>(it->second[0]);
+    if (auto* m = load_measured(st, 1)) contacts_ = static_cast<int>((*m)[0]);
     tails_from_ids_ = true;
     schedule_.load(st);
   }

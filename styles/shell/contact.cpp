@@ -297,8 +297,7 @@ class ShellContactPair : public PairStyle {
         fr.insert(fr.end(), {double(c.t1), double(c.t2), c.friction.xi.x(), c.friction.xi.y(),
                              c.friction.xi.z(), c.friction.stick ? 1.0 : 0.0});
     if (!fr.empty()) st["friction"] = fr;
-    // the forces are restored, not recomputed, so the sums measured with them are too
-    st["measured"] = {double(contacts_), double(far_contacts_), force_sum_};
+    save_measured(st, {double(contacts_), double(far_contacts_), force_sum_});
   }
   void load_state(const StateMap& st) override {
     restored_.clear();
@@ -312,10 +311,10 @@ class ShellContactPair : public PairStyle {
         restored_[(static_cast<std::uint64_t>(v[k]) << 32) | static_cast<std::uint32_t>(v[k + 1])] =
             fs;
       }
-    if (auto it = st.find("measured"); it != st.end() && it->second.size() == 3) {
-      contacts_ = static_cast<int>(it->second[0]);
-      far_contacts_ = static_cast<int>(it->second[1]);
-      force_sum_ = it->second[2];
+    if (auto* m = load_measured(st, 3)) {
+      contacts_ = static_cast<int>((*m)[0]);
+      far_contacts_ = static_cast<int>((*m)[1]);
+      force_sum_ = (*m)[2];
     }
     built_x_.clear();  // rebuild the list (with this history) at the next evaluation
     pairs_.clear();

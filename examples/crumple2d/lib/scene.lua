@@ -20,6 +20,8 @@ function M.build(p)
   local s = slender.var("s", p.s)
   local yield = slender.var("yield", p.yield)
   local mu = slender.var("mu", p.mu)
+  -- wire–wall friction; the thesis gives one mu_st for both (§2.3), so it defaults to mu
+  local wall_mu = slender.var("wall_mu", mu)
   local hardening = slender.var("hardening", p.hardening or 0.05)
   local seed = slender.var("seed", 1)
   local max_phi = slender.var("max_phi", fast and (p.fast_max_phi or 0.3) or (p.max_phi or 1.0))
@@ -49,7 +51,8 @@ function M.build(p)
     skin = slender.var("skin", 0.3 * d) })
   -- channel nodes are kinematic, so the wall needs no openings
   sim:fix("cavity", "wall/circle", { radius = r, diameter = d, stiffness = kc, damping = dc,
-    mu_static = mu, mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s })
+    mu_static = wall_mu, mu_dynamic = 0.9 * wall_mu, stick_stiffness = k1 / d,
+    slip_velocity = 1e-3 * s })
   sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(k1 * m) })
   -- the channels are kinematic, so jam_force stands for the feed rollers' strength: 0.1 k1 d
   -- is 10 % axial strain of the wire (docs/crumple2d/timings.md: doubling it moves the

@@ -3,7 +3,9 @@
 // attractive), and stick-slip Coulomb friction with a tangential stick spring.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "nodes.hpp"
 #include "params.hpp"
@@ -16,6 +18,37 @@ struct FrictionState {
   Vec3 xi = Vec3::Zero();
   bool stick = false;
   bool active = false;  // in contact at the last evaluation
+};
+
+// The stiffness the contacts of one evaluation put on each node: Gershgorin row sums of
+// their Hessian (normal tangent stiffness plus the stick spring). sqrt(max_i k_i / m_i)
+// bounds the contacts' highest frequency as the packing has it now (several contacts per
+// node, deep overlaps), where max_frequency() assumes one contact at a nominal overlap.
+class NodeStiffness {
+ public:
+  void add(int i, double k) {
+    if (static_cast<std::size_t>(i) >= k_.size()) k_.resize(static_cast<std::size_t>(i) + 1, 0.0);
+    if (k_[static_cast<std::size_t>(i)] == 0.0) touched_.push_back(i);
+    k_[static_cast<std::size_t>(i)] += k;
+  }
+  // Closes one evaluation: the measured omega, and the row sums cleared for the next.
+  void finish(const std::vector<double>& mass) {
+    double w2 = 0.0;
+    for (int i : touched_) {
+      const auto u = static_cast<std::size_t>(i);
+      w2 = std::max(w2, k_[u] / mass[u]);
+      k_[u] = 0.0;
+    }
+    touched_.clear();
+    omega_ = std::sqrt(w2);
+  }
+  double omega() const { return omega_; }
+  void set_omega(double w) { omega_ = w; }
+
+ private:
+  std::vector<double> k_;
+  std::vector<int> touched_;
+  double omega_ = 0.0;
 };
 
 struct ContactLaw {
@@ -78,8 +111,17 @@ struct ContactLaw {
   double energy(double overlap) const {
     return stiffness * power(overlap) * overlap / (exponent + 1.0);
   }
+  // Stiffness a contact in state st puts on its bodies (normal tangent plus the stick
+  // spring while it sticks), for the measured stable step.
+  double contact_stiffness(double overlap, const FrictionState& st) const {
+    return tangent_stiffness(overlap) + (st.stick ? stick_stiffness : 0.0);
+  }
   // Stiffness dF/doverlap at a reference overlap, for the stable time step.
   double tangent_stiffness(double overlap) const {
+    // per contact and step for the measured stable step: the common exponents avoid pow
+    if (exponent == 2.0) return 2.0 * stiffness * overlap;
+    if (exponent == 1.0) return stiffness;
+    if (exponent == 1.5) return 1.5 * stiffness * std::sqrt(overlap);
     return exponent * stiffness * std::pow(overlap, exponent - 1.0);
   }
 

@@ -605,9 +605,8 @@ int l_thermo(lua_State* L) {
   for (auto& c : sim.thermo.columns) {
     // validate names now, so a typo stops the deck at this line
     auto dot = c.find('.');
-    static const char* builtin[] = {"step", "time", "dt", "nodes", "ke", "pe", "etotal", "fmax"};
     bool ok = false;
-    for (auto* b : builtin) ok = ok || c == b;
+    for (auto& b : Simulation::builtin_columns()) ok = ok || c == b;
     if (!ok && dot != std::string::npos) {
       std::string id = c.substr(0, dot);
       Style* s = sim.find_style(id);

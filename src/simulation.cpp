@@ -354,6 +354,31 @@ double Simulation::omega_max(std::string* who) const {
   for (auto& f : fixes_) take(f->max_frequency(*this), "fix " + f->id());
   return std::sqrt(w2);
 }
+void Simulation::cache_frequencies() {
+  omega2_fixed_ = 0.0;
+  measuring_.clear();
+  for (auto& sh : shells_) omega2_fixed_ += std::pow(sh->max_frequency(*this), 2);
+  for (auto& b : bonds_) omega2_fixed_ += std::pow(b->max_frequency(*this), 2);
+  for (auto& p : pairs_) measuring_.emplace_back(p.get(), p->max_frequency(*this));
+  for (auto& f : fixes_) measuring_.emplace_back(f.get(), f->max_frequency(*this));
+}
+
+double Simulation::omega_now(std::string* who) const {
+  double w2 = omega2_fixed_, best = 0.0;
+  for (auto& [st, nominal] : measuring_) {
+    double measured = 0.0;
+    if (auto* p = dynamic_cast<const PairStyle*>(st)) measured = p->measured_frequency();
+    if (auto* f = dynamic_cast<const FixStyle*>(st)) measured = f->measured_frequency();
+    const double w = std::max(nominal, measured);
+    w2 += w * w;
+    if (who && measured > nominal && w > best) {
+      best = w;
+      *who = st->id() + " (measured)";
+    }
+  }
+  return std::sqrt(w2);
+}
+
 double Simulation::stability_limit() const {
   return integrator_ ? integrator_->stability_limit() : 2.0;
 }
@@ -361,6 +386,13 @@ double Simulation::suggest_dt(double safety) const {
   double w = omega_max();
   if (!(w > 0)) return 0.0;
   return safety * stability_limit() / w;
+}
+
+const std::vector<std::string>& Simulation::builtin_columns() {
+  static const std::vector<std::string> names{"step",      "time",      "dt",       "nodes",
+                                              "ke",        "pe",        "etotal",   "fmax",
+                                              "omega_max", "omega_now", "dt_stable"};
+  return names;
 }
 
 double Simulation::column(const std::string& name) {
@@ -372,10 +404,18 @@ double Simulation::column(const std::string& name) {
   if (name == "pe") return potential_energy();
   if (name == "etotal") return kinetic_energy() + potential_energy();
   if (name == "fmax") return max_force();
+  if (name == "omega_max") return omega_max();
+  if (name == "omega_now") return omega_now();
+  if (name == "dt_stable") {
+    const double w = omega_now();
+    return w > 0 ? stability_limit() / w : 0.0;
+  }
   auto dot = name.find('.');
   if (dot == std::string::npos)
-    throw InputError("unknown thermo column '" + name +
-                     "' (built in: step, time, dt, nodes, ke, pe, etotal, fmax; or <id>.<key>)");
+    throw InputError(
+        "unknown thermo column '" + name +
+        "' (built in: step, time, dt, nodes, ke, pe, etotal, fmax, omega_max, omega_now, "
+        "dt_stable; or <id>.<key>)");
   std::string id = name.substr(0, dot), key = name.substr(dot + 1);
   if (id == "energy" && !find_style("energy")) {
     // energies by category are always available
@@ -467,6 +507,7 @@ void Simulation::setup_run() {
   if (nodes_.size() == 0) throw InputError("the scene has no nodes");
   build_schedule();  // styles bind first: some measure their stiffness in setup()
   resolve_dt();
+  cache_frequencies();
   if (!forces_valid) compute_forces();
   integrator_->setup(*this);
   if (verbose) {
@@ -474,6 +515,13 @@ void Simulation::setup_run() {
     double w = omega_max(&who);
     std::printf("run: integrator %s, dt %.6g", integrator_->style_name().c_str(), dt);
     if (w > 0) std::printf(" (stable estimate %.4g, stiffest: %s)", suggest_dt(1.0), who.c_str());
+    // every term's nominal highest frequency: which one limits the step
+    std::printf("\n  omega by term:");
+    for (auto& sh : shells_)
+      std::printf(" shell %s %.4g;", sh->id().c_str(), sh->max_frequency(*this));
+    for (auto& b : bonds_) std::printf(" bond %s %.4g;", b->id().c_str(), b->max_frequency(*this));
+    for (auto& [st, w] : measuring_)
+      if (w > 0) std::printf(" %s %.4g;", st->id().c_str(), w);
     std::printf("\n  forces:");
     for (auto& s : shells_) std::printf(" shell %s;", s->id().c_str());
     for (auto& b : bonds_) std::printf(" bond %s;", b->id().c_str());
@@ -754,7 +802,13 @@ void Simulation::run(const RunOptions& opt) {
   const auto t0 = clock::now();
   auto last_progress = t0;
   const long first = step;
+  const bool adaptive = integrator_->adaptive();
+  const double dt_cap = dt;
   for (long k = 1; k <= opt.steps; ++k) {
+    // an adaptive step follows the measured stiffness of the contacts (never above the
+    // requested or nominal "auto" step): dense packings load a node with several deep
+    // contacts, which the nominal estimate does not know
+    if (adaptive) dt = std::min(dt_cap, integrator_->safety() * stability_limit() / omega_now());
     integrator_->step(*this);
     ++step;
     time += dt;

@@ -166,10 +166,16 @@ class Simulation {
   const std::map<std::string, double>& energies() const { return energy_; }
   // A thermo column: step, time, dt, nodes, ke, pe, etotal, <id>.<key>.
   double column(const std::string& name);
+  // The columns column() knows without a style id.
+  static const std::vector<std::string>& builtin_columns();
   double max_force() const;
   // Highest frequency of all stiff terms, and the dt the integrator can take.
   double omega_max(std::string* who = nullptr) const;
   double suggest_dt(double safety = 1.0) const;
+  // The same bound with the contacts as they are now (MODELS.md has no such term: it is the
+  // measured stiffness of several contacts per node and deep overlaps), never below the
+  // nominal one; `who` names the stiffest term. Cheap: the nominal values are cached per run.
+  double omega_now(std::string* who = nullptr) const;
   double stability_limit() const;
 
   // --- restart files (HDF5)
@@ -223,6 +229,11 @@ class Simulation {
   long good_step_ = -1;
   double good_time_ = 0.0;
   double energy_scale_ = 0.0;
+  // nominal frequencies cached at the start of a run: omega^2 of the terms that measure
+  // nothing, and each measuring pair or fix with its nominal omega
+  double omega2_fixed_ = 0.0;
+  std::vector<std::pair<const Style*, double>> measuring_;
+  void cache_frequencies();
 };
 
 }  // namespace slender

@@ -74,6 +74,9 @@ class PairStyle : public Style {
   virtual void setup(Simulation&) {}
   virtual double compute(Simulation& sim) = 0;
   virtual double max_frequency(const Simulation& sim) const = 0;
+  // Highest frequency measured at the last force evaluation (contacts as they are now);
+  // 0 where a style measures none. The adaptive step uses the larger of the two.
+  virtual double measured_frequency() const { return 0.0; }
   // The neighbour search this pair builds (for the scene inventory), e.g. "linked cells".
   virtual std::string neighbor_structure() const { return "pair list"; }
 };
@@ -95,6 +98,8 @@ class FixStyle : public Style {
   virtual double post_force(Simulation&) { return 0.0; }
   virtual void end_of_step(Simulation&) {}
   virtual double max_frequency(const Simulation&) const { return 0.0; }
+  // As PairStyle::measured_frequency (walls in contact now).
+  virtual double measured_frequency() const { return 0.0; }
 };
 
 // Thin shells on triangle meshes (MODELS.md §6): their own family, evaluated
@@ -161,6 +166,8 @@ class IntegratorStyle : public Style {
   // Requested time step, or <= 0 for "auto".
   double requested_dt() const { return dt_; }
   double safety() const { return safety_; }
+  // The run sets dt before every step from the measured stiffness (Simulation::omega_now).
+  virtual bool adaptive() const { return false; }
 
  protected:
   // The "dt" and "safety" keys every integrator takes.

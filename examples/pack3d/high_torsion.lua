@@ -9,7 +9,7 @@
 -- radius of curvature R_i = 100 (kbar = (0, 1/R_i, 0), MODELS.md §4.5: the thesis'
 -- "k_y = 0.001" contradicts its R_i = 100; -v R_i=1000 runs that reading).
 local R_i = slender.var("R_i", 100.0)
-require("lib.scene").run { name = "high_torsion", R = 10, rotation = "held",
+require("lib.scene").run { name = "high_torsion", R = 10, rotation = "held", jam_time = 0.5756,
   bend = function(sim, k)
     local nu = 0.33
     local J = math.pi / 2          -- polar moment of a unit-radius section

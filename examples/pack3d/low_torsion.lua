@@ -5,5 +5,5 @@
 -- (63.1 M steps to its jam at phi = 0.452, 7.4 h over five sittings).
 -- Thesis parameters: a = 1, Y = 1000, nu = 0.33, mu_s = 0.2, mu_d = 0.18; R in
 -- {4, 5, 10, 13, 20, 40, 50}.
-require("lib.scene").run { name = "low_torsion", R = 10,
+require("lib.scene").run { name = "low_torsion", R = 10, jam_time = 2.418,
   bend = function(sim, k) sim:bond("rod/straight", { YI = k.YI, node_energy = true }) end }

@@ -7,8 +7,10 @@
 // a node that passes the cavity's rim becomes free. The injection force is the
 // axial force the feeder must exert on the channel nodes (minus the inward part of
 // the internal forces on them), summed over the channels. Jamming: its moving
-// average over `jam_window` steps exceeds `jam_force`, or it grows by `jam_growth`
-// within a packing-density increase of `jam_dphi`; the run then ends cleanly.
+// average over the last `jam_time` time units exceeds `jam_force`, or it grows by
+// `jam_growth` within a packing-density increase of `jam_dphi`; the run then ends
+// cleanly. The window is a time, not a count of steps, so that the criterion means
+// the same at every dt (and under an adaptive step).
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -58,7 +60,11 @@ class WireInjectionFix : public FixStyle {
     s.real("jam_force", "stop when the moving average of the injection force exceeds this")
         .def(std::numeric_limits<double>::infinity())
         .positive();
-    s.integer("jam_window", "steps of the moving average").def(1000.0).min(1);
+    s.real("jam_time",
+           "time over which the injection force is averaged for the jamming tests (a time, "
+           "not a step count: the test means the same at every dt); required with jam_force or "
+           "jam_growth")
+        .positive();
     s.real("jam_growth", "also stop when the averaged force grows by this factor ... (0: off)")
         .def(0.0)
         .nonnegative();
@@ -85,7 +91,7 @@ class WireInjectionFix : public FixStyle {
         v_(p.real("speed")),
         d_(p.real("diameter")),
         jam_force_(p.real("jam_force")),
-        window_(p.integer("jam_window")),
+        window_(p.has("jam_time") ? p.real("jam_time") : 0.0),
         growth_(p.real("jam_growth")),
         dphi_(p.real("jam_dphi")),
         max_phi_(p.real("max_phi")),
@@ -93,6 +99,11 @@ class WireInjectionFix : public FixStyle {
         hold_rotation_(p.str("rotation") == "held"),
         perturb_(p.real("perturb")) {
     dim_ = sim.dimension();
+    if ((std::isfinite(jam_force_) || growth_ > 0) && !(window_ > 0))
+      throw InputError(
+          "fix style 'inject/wire': jam_force and jam_growth average the injection force over "
+          "jam_time (time units); give jam_time, e.g. jam_time = 1000 * dt for the thesis' "
+          "1000-step window at the reference dt");
     Chain* c = sim.topology().find(chain_);
     if (!c) throw InputError("fix style 'inject/wire': unknown chain '" + chain_ + "'");
     if (c->closed) throw InputError("fix style 'inject/wire': the chain must be open");
@@ -153,6 +164,7 @@ class WireInjectionFix : public FixStyle {
     full["chain"] = chain_;
     full["radius"] = r_;
     v_ = spec(style_name()).validate(full).real("speed");
+    recount_in_ = 0;  // the recount interval follows the feed speed
   }
 
   double post_force(Simulation& sim) override {
@@ -190,21 +202,42 @@ class WireInjectionFix : public FixStyle {
         mask_ = sim.nodes().find<int>("dof_mask");
         drive(sim, n);
         injected_ += k.rest;
+        fed_ = true;
         c = sim.topology().find(chain_);
       }
     }
-    phi_ = packing(sim);
-    // moving average of the injection force and the jamming tests
-    history_.push_back(force_);
-    sum_ += force_;
-    if (static_cast<long>(history_.size()) > window_) {
-      sum_ -= history_.front();
+    // The packing density changes only as edge midpoints cross the rim, i.e. as the feed
+    // advances: recount it (O(N)) each 1/50 of a rest length of feed and after a node
+    // entered, not every step (it was 6 % of a crumpling run's time).
+    recount_in_ -= sim.dt;
+    if (recount_in_ <= 0 || fed_) {
+      phi_ = packing(sim);
+      const double rest = channels_.empty() ? d_ : channels_.front().rest;
+      recount_in_ = v_ > 0 ? 0.02 * rest / v_ : 1000 * sim.dt;
+      fed_ = false;
+    }
+    // time-weighted moving average of the injection force over the last jam_time
+    history_.push_back({sim.dt, force_});
+    sum_ += sim.dt * force_;
+    span_ += sim.dt;
+    while (history_.size() > 1 && span_ - history_.front().first >= window_) {
+      sum_ -= history_.front().first * history_.front().second;
+      span_ -= history_.front().first;
       history_.pop_front();
     }
-    avg_ = sum_ / static_cast<double>(history_.size());
+    // the running sums drift by rounding over millions of steps: renew them now and then
+    if (++since_renew_ >= 100000) {
+      since_renew_ = 0;
+      sum_ = span_ = 0.0;
+      for (auto& [w, f] : history_) {
+        sum_ += w * f;
+        span_ += w;
+      }
+    }
+    avg_ = span_ > 0 ? sum_ / span_ : force_;
     if (phi_ >= max_phi_)
       sim.request_stop("packing density reached max_phi = " + std::to_string(max_phi_));
-    if (static_cast<long>(history_.size()) < window_ || phi_ < min_phi_) return;
+    if (!(window_ > 0) || span_ < window_ * (1 - 1e-9) || phi_ < min_phi_) return;
     if (avg_ > jam_force_) {
       jammed_ = 1;
       sim.request_stop("jammed: injection force " + std::to_string(avg_) +
@@ -241,8 +274,12 @@ class WireInjectionFix : public FixStyle {
     }
     st["channels"] = ch;
     st["anchors"] = anchors;
-    st["scalars"] = {force_, avg_, phi_, static_cast<double>(jammed_), injected_, sum_};
-    st["history"] = std::vector<double>(history_.begin(), history_.end());
+    st["scalars"] = {force_,    avg_, phi_,  static_cast<double>(jammed_),
+                     injected_, sum_, span_, recount_in_};
+    // (dt, force) per step of the averaging window
+    std::vector<double> h;
+    for (auto& [w, f] : history_) h.insert(h.end(), {w, f});
+    st["force_window"] = h;
     st["driven"] = std::vector<double>(driven_.begin(), driven_.end());
   }
   void load_state(const StateMap& st) override {
@@ -262,8 +299,15 @@ class WireInjectionFix : public FixStyle {
     jammed_ = static_cast<int>(s[3]);
     injected_ = s[4];
     sum_ = s[5];
-    auto& h = st.at("history");
-    history_.assign(h.begin(), h.end());
+    if (!st.count("force_window") || s.size() < 7)
+      throw InputError(
+          "fix style 'inject/wire': this checkpoint was written by an older slender whose jamming "
+          "window counted steps; it cannot be continued with the time-based jam_time");
+    span_ = s[6];
+    if (s.size() > 7) recount_in_ = s[7];
+    auto& h = st.at("force_window");
+    history_.clear();
+    for (size_t i = 0; i + 1 < h.size(); i += 2) history_.push_back({h[i], h[i + 1]});
     auto& dr = st.at("driven");
     driven_.assign(dr.begin(), dr.end());
   }
@@ -340,7 +384,7 @@ class WireInjectionFix : public FixStyle {
   Vec3 c_;
   double v_, d_, jam_force_;
   int dim_ = 2;
-  long window_;
+  double window_;  // jam_time; 0: no jamming tests
   double growth_, dphi_, max_phi_, min_phi_;
   bool hold_rotation_ = false;
   double perturb_ = 0.0;
@@ -348,9 +392,12 @@ class WireInjectionFix : public FixStyle {
   std::vector<Channel> channels_;
   std::vector<int> driven_;  // nodes this fix moves kinematically
   Property<int>* mask_ = nullptr;
-  double force_ = 0, avg_ = 0, phi_ = 0, injected_ = 0, sum_ = 0;
+  double force_ = 0, avg_ = 0, phi_ = 0, injected_ = 0, sum_ = 0, span_ = 0;
+  long since_renew_ = 0;
+  double recount_in_ = 0;  // time until the packing density is recounted
+  bool fed_ = false;
   int jammed_ = 0, inside_ = 0;
-  std::deque<double> history_;
+  std::deque<std::pair<double, double>> history_;  // (dt, force) of the window's steps
   std::deque<std::pair<double, double>> marks_;
 };
 

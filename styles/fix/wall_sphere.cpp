@@ -111,10 +111,12 @@ class SphereWallFix : public FixStyle {
         (*xi_)[i] = st.xi;
         (*state_)[i] = (st.stick ? 1 : 0) | (st.active ? 2 : 0);
       }
+      stiffness_.add(i, law_.contact_stiffness(delta, st));
       e += e_contact;
       total_ += fn;
       ++contacts_;
     }
+    stiffness_.finish(sim.nodes().mass);
     return e;
   }
   double max_frequency(const Simulation& sim) const override {
@@ -127,16 +129,27 @@ class SphereWallFix : public FixStyle {
         law_.tangent_stiffness(dref) + (law_.frictional() ? law_.stick_stiffness : 0.0);
     return std::sqrt(k / mmin);
   }
-  std::vector<std::string> value_keys() const override { return {"force", "contacts", "radius"}; }
+  double measured_frequency() const override { return stiffness_.omega(); }
+  std::vector<std::string> value_keys() const override {
+    return {"force", "contacts", "radius", "omega"};
+  }
   double value(const std::string& key) const override {
+    if (key == "omega") return stiffness_.omega();
     if (key == "radius") return r_;
     if (key == "force") return total_;
     if (key == "contacts") return contacts_;
     return FixStyle::value(key);
   }
-  void save_state(StateMap& st) const override { save_measured(st, {total_, double(contacts_)}); }
+  void save_state(StateMap& st) const override {
+    save_measured(st, {total_, double(contacts_), stiffness_.omega()});
+  }
   void load_state(const StateMap& st) override {
-    if (auto* m = load_measured(st, 2)) total_ = (*m)[0], contacts_ = static_cast<int>((*m)[1]);
+    if (auto* m = load_measured(st, 3)) {
+      total_ = (*m)[0], contacts_ = static_cast<int>((*m)[1]);
+      stiffness_.set_omega((*m)[2]);
+    } else if (auto* m2 = load_measured(st, 2)) {
+      total_ = (*m2)[0], contacts_ = static_cast<int>((*m2)[1]);
+    }
   }
 
  private:
@@ -163,6 +176,7 @@ class SphereWallFix : public FixStyle {
   Property<int>* state_ = nullptr;
   double total_ = 0.0;
   int contacts_ = 0;
+  NodeStiffness stiffness_;
 };
 
 }  // namespace slender

@@ -9,9 +9,16 @@ class VelocityVerletIntegrator : public IntegratorStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("integrator", name, "velocity Verlet, 2nd order, symplectic (omega dt < 2)");
     declare_time_step(s, "time step, or \"auto\" = safety * 2 / omega_max");
+    s.boolean("adaptive",
+              "set dt before every step to safety * 2 / omega, with omega from the contacts as "
+              "they are (several per node, deep overlaps; never above dt)")
+        .def(false);
     return s;
   }
-  VelocityVerletIntegrator(Simulation&, const ParamValues& p) { read_time_step(p); }
+  VelocityVerletIntegrator(Simulation&, const ParamValues& p) : adaptive_(p.boolean("adaptive")) {
+    read_time_step(p);
+  }
+  bool adaptive() const override { return adaptive_; }
   double stability_limit() const override { return 2.0; }
   void setup(Simulation&) override {}
   void step(Simulation& sim) override {
@@ -42,6 +49,9 @@ class VelocityVerletIntegrator : public IntegratorStyle {
       }
     sim.end_of_step();
   }
+
+ private:
+  bool adaptive_ = false;
 };
 
 }  // namespace slender

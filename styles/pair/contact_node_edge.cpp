@@ -128,9 +128,15 @@ class NodeEdgeContactPair : public PairStyle {
       f[c.node] += F;
       f[ed.a] -= (1 - t) * F;
       f[ed.b] -= t * F;
+      // Hessian k w w^T with w = (1, -(1-t), -t): row sums 2k, 2(1-t)k, 2tk
+      const double kc = law_.contact_stiffness(d_ - dist, c.st);
+      stiffness_.add(c.node, 2 * kc);
+      stiffness_.add(ed.a, 2 * (1 - t) * kc);
+      stiffness_.add(ed.b, 2 * t * kc);
       energy += e_contact;
       ++contacts_;
     }
+    stiffness_.finish(sim.nodes().mass);
     return energy;
   }
 
@@ -145,9 +151,13 @@ class NodeEdgeContactPair : public PairStyle {
     return std::sqrt(2.0 * k / m);
   }
   std::string neighbor_structure() const override { return "linked cells + node-edge pair list"; }
-  std::vector<std::string> value_keys() const override { return {"contacts", "pairs", "builds"}; }
+  double measured_frequency() const override { return stiffness_.omega(); }
+  std::vector<std::string> value_keys() const override {
+    return {"contacts", "pairs", "builds", "omega"};
+  }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
+    if (key == "omega") return stiffness_.omega();
     if (key == "pairs") return static_cast<double>(list_.size());
     if (key == "builds") return schedule_.builds();
     return PairStyle::value(key);
@@ -158,7 +168,7 @@ class NodeEdgeContactPair : public PairStyle {
       flat.insert(flat.end(), {double(e.node), double(e.edge), e.st.xi.x(), e.st.xi.y(),
                                e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0, double(e.side)});
     st["history"] = flat;
-    save_measured(st, {double(contacts_)});
+    save_measured(st, {double(contacts_), stiffness_.omega()});
     schedule_.save(st);
   }
   void load_state(const StateMap& st) override {
@@ -174,7 +184,12 @@ class NodeEdgeContactPair : public PairStyle {
       e.side = static_cast<int>(h[k + 6]);
       list_.push_back(e);
     }
-    if (auto* m = load_measured(st, 1)) contacts_ = static_cast<int>((*m)[0]);
+    if (auto* m = load_measured(st, 2)) {
+      contacts_ = static_cast<int>((*m)[0]);
+      stiffness_.set_omega((*m)[1]);
+    } else if (auto* m1 = load_measured(st, 1)) {
+      contacts_ = static_cast<int>((*m1)[0]);
+    }
     tails_from_ids_ = true;
     schedule_.load(st);
   }
@@ -298,6 +313,7 @@ class NodeEdgeContactPair : public PairStyle {
   std::vector<Vec3> mid_;
   bool need_build_ = true;
   int contacts_ = 0;
+  NodeStiffness stiffness_;
 };
 
 }  // namespace slender

@@ -123,9 +123,16 @@ class SegmentContactPair : public PairStyle {
       f[e1.b] += s * F;
       f[e2.a] -= (1 - t) * F;
       f[e2.b] -= t * F;
+      // Hessian k w w^T with w = (1-s, s, -(1-t), -t), |w|_1 = 2: row sums 2 k |w_j|
+      const double k = law.contact_stiffness(reach - dist, c.st);
+      stiffness_.add(e1.a, 2 * (1 - s) * k);
+      stiffness_.add(e1.b, 2 * s * k);
+      stiffness_.add(e2.a, 2 * (1 - t) * k);
+      stiffness_.add(e2.b, 2 * t * k);
       energy += e_contact;
       ++contacts_;
     }
+    stiffness_.finish(sim.nodes().mass);
     return energy;
   }
 
@@ -141,9 +148,13 @@ class SegmentContactPair : public PairStyle {
     return std::sqrt(2.0 * k / m);
   }
   std::string neighbor_structure() const override { return "linked cells + segment pair list"; }
-  std::vector<std::string> value_keys() const override { return {"contacts", "pairs", "builds"}; }
+  double measured_frequency() const override { return stiffness_.omega(); }
+  std::vector<std::string> value_keys() const override {
+    return {"contacts", "pairs", "builds", "omega"};
+  }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
+    if (key == "omega") return stiffness_.omega();
     if (key == "pairs") return static_cast<double>(list_.size());
     if (key == "builds") return schedule_.builds();
     return PairStyle::value(key);
@@ -154,7 +165,7 @@ class SegmentContactPair : public PairStyle {
       flat.insert(flat.end(), {double(e.e1), double(e.e2), e.st.xi.x(), e.st.xi.y(), e.st.xi.z(),
                                e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0});
     st["history"] = flat;
-    save_measured(st, {double(contacts_)});
+    save_measured(st, {double(contacts_), stiffness_.omega()});
     schedule_.save(st);
   }
   void load_state(const StateMap& st) override {
@@ -169,7 +180,12 @@ class SegmentContactPair : public PairStyle {
       e.st.active = h[k + 6] != 0;
       list_.push_back(e);
     }
-    if (auto* m = load_measured(st, 1)) contacts_ = static_cast<int>((*m)[0]);
+    if (auto* m = load_measured(st, 2)) {
+      contacts_ = static_cast<int>((*m)[0]);
+      stiffness_.set_omega((*m)[1]);
+    } else if (auto* m1 = load_measured(st, 1)) {
+      contacts_ = static_cast<int>((*m1)[0]);
+    }
     tails_from_ids_ = true;
     schedule_.load(st);
   }
@@ -262,6 +278,7 @@ class SegmentContactPair : public PairStyle {
   std::vector<Vec3> mid_;
   bool need_build_ = true, bound_ = false;
   int contacts_ = 0;
+  NodeStiffness stiffness_;
 };
 
 }  // namespace slender

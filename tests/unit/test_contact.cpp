@@ -334,3 +334,45 @@ TEST(SegmentContactPair, FrictionHistoryFollowsTheEdgeWhenAChainGrowsAtItsFront)
                                                 {"stick_stiffness", 100.0}})),
             1e-6);
 }
+
+TEST(NodeEdgeContactPair, MeasuredFrequencyCountsEveryContactOfANode) {
+  // a node pressed between two parallel wires, overlap delta on each side: each contact
+  // puts 2 k_t on the node (Gershgorin row sum of k_t w w^T), k_t = 2 k_c delta for the
+  // quadratic law, so omega^2 = 2 * 2 * 2 k_c delta / m; one contact alone gives half
+  const double kc = 1e4, delta = 0.05, m = 2.0;
+  auto omega = [&](bool both) {
+    Simulation sim(2, 1);
+    // heavy walls: the light node between them has the highest k / m
+    sim.add_chain("low", {Vec3(-3, -(1 - delta), 0), Vec3(3, -(1 - delta), 0)}, 1e3, false);
+    if (both) sim.add_chain("high", {Vec3(-3, 1 - delta, 0), Vec3(3, 1 - delta, 0)}, 1e3, false);
+    sim.add_chain("mid", {Vec3(0, 0, 0), Vec3(0.0, 0.0, 0) + Vec3(1e-3, 0, 0)}, m, false);
+    sim.add_pair("contact/node-edge", P({{"diameter", 1.0}, {"stiffness", kc}, {"exclude", 0.0}}));
+    sim.compute_forces();
+    return sim.pairs()[0]->value("omega");
+  };
+  EXPECT_NEAR(omega(false), std::sqrt(2 * 2 * kc * delta / m), 1e-6);
+  EXPECT_NEAR(omega(true), std::sqrt(2 * 2 * 2 * kc * delta / m), 1e-6);
+}
+
+TEST(VelocityVerletIntegrator, AdaptiveStepFollowsTheMeasuredContacts) {
+  // a heavy node dropped onto a stiff wall: once it presses deep into the wall, the adaptive
+  // step falls below the nominal "auto" step (one contact at a tenth of a diameter), and
+  // the run stays stable
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.add_chain("w", {Vec3(0, 8.0, 0), Vec3(0.5, 8.0, 0)}, 1.0, false);
+  sim.add_bond("spring", P({{"k", 100.0}}));
+  sim.add_fix("cavity", "wall/circle",
+              P({{"radius", 9.0}, {"diameter", 1.0}, {"stiffness", 1e4}, {"damping", 5.0}}));
+  sim.add_fix("push", "force/constant",
+              P({{"group", "all"s}, {"force", std::vector<double>{0, 300}}}));
+  sim.set_integrator("verlet", P({{"dt", "auto"s}, {"adaptive", true}}));
+  sim.run(RunOptions{20000, 0, {}});
+  const double nominal = sim.suggest_dt(0.5);
+  EXPECT_GT(sim.fix("cavity").value("contacts"), 0.0);
+  EXPECT_GT(sim.fix("cavity").value("omega"), 0.0);
+  EXPECT_LT(sim.dt, 0.9 * nominal) << "the adaptive step did not follow the deep contact";
+  // dt was set from the contacts at the start of the last step
+  EXPECT_NEAR(sim.dt, 0.5 * 2.0 / sim.omega_now(), 1e-3 * sim.dt);
+  EXPECT_TRUE(sim.nodes().x[0].allFinite());
+}

@@ -75,13 +75,61 @@ TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
                   {"speed", 0.01},
                   {"channels", std::string("left")},
                   {"jam_force", 50.0},
-                  {"jam_window", 100.0}}));
+                  {"jam_time", 0.2}}));
   sim->set_integrator("gear", P({{"dt", 0.002}}));
   sim->run(RunOptions{10000000, 0, {}});
   EXPECT_LT(sim->step, 10000000);
   EXPECT_EQ(sim->fix("feed").value("jammed"), 1.0);
   EXPECT_GT(sim->fix("feed").value("force_avg"), 50.0);
   EXPECT_NE(sim->stop_reason().find("jammed"), std::string::npos) << sim->stop_reason();
+}
+
+TEST(WireInjectionFix, JamWindowIsATimeSoTheStopDoesNotDependOnTheStep) {
+  // A clamped wire pushed at constant speed: the injection force ramps up, and its
+  // average over the last jam_time lags the force by about jam_time / 2. With a window of
+  // steps the lag would halve with dt (about 10 time units here); with a window in time
+  // the stop comes at the same time at both steps.
+  auto jam_time_at = [](double dt) {
+    auto sim = std::make_unique<Simulation>(2, 1);
+    sim->verbose = false;
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 25; ++i) pts.emplace_back(-12.0 + i, 0, 0);
+    sim->add_chain("wire", pts, 1.0, false);
+    sim->add_bond("spring", P({{"k", 1000.0}}));
+    sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
+    sim->set_group("far", {24});
+    sim->add_fix("hold", "clamp", P({{"group", std::string("far")}}));
+    sim->add_fix("feed", "inject/wire",
+                 P({{"chain", std::string("wire")},
+                    {"radius", 10.0},
+                    {"speed", 0.01},
+                    {"channels", std::string("left")},
+                    {"jam_force", 50.0},
+                    {"jam_time", 40.0}}));
+    sim->set_integrator("gear", P({{"dt", dt}}));
+    sim->run(RunOptions{100000000, 0, {}});
+    EXPECT_EQ(sim->fix("feed").value("jammed"), 1.0);
+    return sim->time;
+  };
+  const double t1 = jam_time_at(0.004), t2 = jam_time_at(0.002);
+  EXPECT_NEAR(t1, t2, 1.0) << t1 << " " << t2;
+}
+
+TEST(WireInjectionFix, JamTestsNeedTheirAveragingTime) {
+  Simulation sim(2, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 25; ++i) pts.emplace_back(-12.0 + i, 0, 0);
+  sim.add_chain("wire", pts, 1.0, false);
+  try {
+    sim.add_fix("feed", "inject/wire",
+                P({{"chain", std::string("wire")},
+                   {"radius", 10.0},
+                   {"speed", 0.01},
+                   {"jam_force", 50.0}}));
+    FAIL() << "jam_force without jam_time was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("jam_time"), std::string::npos) << e.what();
+  }
 }
 
 TEST(WireInjectionFix, JamTestsWaitForTheirPackingDensity) {
@@ -102,7 +150,7 @@ TEST(WireInjectionFix, JamTestsWaitForTheirPackingDensity) {
                     {"speed", 0.05},
                     {"channels", std::string("left")},
                     {"jam_force", 0.1},
-                    {"jam_window", 100.0},
+                    {"jam_time", 0.2},
                     {"jam_min_phi", min_phi}}));
     sim->set_integrator("gear", P({{"dt", 0.002}}));
     sim->run(RunOptions{20000, 0, {}});

@@ -6,7 +6,7 @@
 -- k_c = 10 k1 / d, d_c = 0.1 * 2 sqrt(m k_c d), k_st = k1 / d, v_th = 1e-3 v_in,
 -- mu_d = 0.9 mu_st; damping 0.01 sqrt(k1 m) on translations and 0.01 sqrt(k2 m) l0
 -- on the turning rate (§2.1); jamming when the
--- injection force averaged over 1000 steps exceeds 0.1 k1 l0 (§2.4); Gear q = 5 with
+-- injection force averaged over 1000 reference steps (a time) exceeds 0.1 k1 l0 (§2.4); Gear q = 5 with
 -- dt = 0.01 sqrt(m / k1) (half the §2.5 default, see below). The thesis' s is read as
 -- the feed speed (§2.6 (a)).
 local M = {}
@@ -58,14 +58,25 @@ function M.build(p)
   -- is 10 % axial strain of the wire (docs/crumple2d/timings.md: doubling it moves the
   -- jamming density by 0.006-0.02 at f = 10-50)
   sim:fix("feed", "inject/wire", { chain = "wire", radius = r, speed = s, diameter = d,
-    jam_force = slender.var("jam_force", 0.1 * k1 * d), jam_window = 1000, max_phi = max_phi })
+    jam_force = slender.var("jam_force", 0.1 * k1 * d),
+    -- averaged over 1000 steps of the reference dt 0.01 sqrt(m / k1) (MODELS.md §2.4), as a
+    -- time: a step count would average over 10x more wire at 10x the step
+    jam_time = slender.var("jam_time", 10 * math.sqrt(m / k1)), max_phi = max_phi })
   -- dt = 0.01 sqrt(m / k1): half of MODELS.md's [C] default 0.02 sqrt(m / k1), which
   -- still burst near jamming in 1 of 6 runs of the s study (f = 10, s = 0.06; the
   -- guard stopped it with a torn edge; with dt / 2 it jams cleanly). The nominal
   -- "auto" step is 5.6x larger: it assumes one contact of overlap d/10 per node,
   -- while dense packings load nodes with several deeper contacts and Gear q = 5 is
   -- stable only for omega dt < 0.42.
-  sim:integrator("gear", { values = 5, dt = slender.var("dt", 0.01 * math.sqrt(m / k1)) })
+  local integrator = slender.var("integrator", "verlet")
+  if integrator == "gear" then
+    sim:integrator("gear", { values = 5, dt = slender.var("dt", 0.01 * math.sqrt(m / k1)) })
+  elseif integrator == "verlet" then
+    sim:integrator("verlet", { dt = slender.var("dt", "auto"),
+                               adaptive = slender.var("adaptive", true) })
+  else
+    sim:integrator(integrator, { dt = slender.var("dt", "auto") })
+  end
   -- an edge strained beyond max_strain stops the run as a torn wire
   sim:guard { max_strain = slender.var("max_strain", 0.5) }
   sim:compute("count", "count", {})

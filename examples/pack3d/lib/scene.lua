@@ -6,8 +6,8 @@
 -- l0 = a. So YA = pi Y, YI = pi Y / 4, node mass rho A l0 = pi. Defaults marked [C]
 -- in §5: contact and wall stiffness E* of two rest edges, k_st = E* / 10, contact
 -- damping 0.1 * 2 sqrt(m E*), feed speed 1e-3 sqrt(Y / rho), viscous damping
--- 0.01 sqrt(k1 m), Gear q = 6. Stop when the injection force averaged over 1000
--- steps exceeds F_stop = max(0.01 YA, 20 YI / R^2): the [C] default 0.01 YA alone
+-- 0.01 sqrt(k1 m), Gear q = 6. Stop when the injection force averaged over jam_time
+-- (1000 steps of the reference dt) exceeds F_stop = max(0.01 YA, 20 YI / R^2): the [C] default 0.01 YA alone
 -- (F R^2 / YI = 0.04 R^2) lies below the Euler load that the first head-on contact
 -- of the straight rod with the far wall needs (measured: 10 YI / R^2 is not enough at
 -- R = 5, where the rod, clamped in the nozzle and held by friction, hits head-on) for R < 16,
@@ -67,13 +67,24 @@ function M.build(p)
   sim:fix("feed", "inject/wire", { chain = "rod", radius = R, center = { 0, 0, 0 }, channels = "nozzle",
     direction = { 0, 0, -1 }, speed = speed, diameter = 2 * a, rotation = p.rotation or "free",
     perturb = slender.var("perturb", 0.01 * a),
-    jam_force = slender.var("stop_force", math.max(0.01 * YA, 20 * YI / R ^ 2)), jam_window = 1000,
+    jam_force = slender.var("stop_force", math.max(0.01 * YA, 20 * YI / R ^ 2)),
+    -- the force is averaged over jam_time: 1000 steps of the "auto" step these decks ran
+    -- at until 2026-12 (a time, so that the stop means the same at any dt)
+    jam_time = slender.var("jam_time", p.jam_time),
     max_phi = slender.var("max_phi", 1.0),
     -- -v jam_min_phi=: no stop below this density. The straight rod first crosses the
     -- sphere at phi = 1.5 (a/R)^2; at R = 20 that head-on hit passes F_stop = 39 (the
     -- run stopped at phi = 0.004), so R = 20 runs use 3 (a/R)^2
     jam_min_phi = slender.var("jam_min_phi", 0.0) })
-  sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
+  local integrator = slender.var("integrator", "gear")
+  if integrator == "gear" then
+    sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
+  elseif integrator == "verlet" then
+    sim:integrator("verlet", { dt = slender.var("dt", "auto"),
+                               adaptive = slender.var("adaptive", true) })
+  else
+    sim:integrator(integrator, { dt = slender.var("dt", "auto") })
+  end
   sim:compute("count", "count", {})
   sim:compute("gyr", "gyration", { group = "rod", inside = R })
   local restart = slender.var("restart", "")

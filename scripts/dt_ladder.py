@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""Does the answer depend on the time step? Runs one injection deck (2D crumpling or 3D
+packing) to its jam over a ladder of (integrator, dt) rungs with several seeds, and writes
+the science observables next to the wall time each rung cost (work-precision style):
+
+  - 2D: phi_jam, the injection force at the stop, A/B, loops, contacts, fractal dimension;
+  - 3D: phi_max, the force, E_b R / YI, contacts.
+
+The first rung is the reference (the smallest step); a rung agrees with it when the
+difference of the seed means lies within the seed scatter (the larger of the two standard
+errors, times 2). Writes <out>.csv (one row per run), <out>.md (a row per rung) and
+<out>.png (each observable against wall time). A study, not a test.
+
+  /usr/bin/python3 scripts/dt_ladder.py --deck crumple2d/classic --var f=25 \
+      --rung gear:0.000316 --rung verlet:auto --seeds 1 2 3 4 --out docs/crumple2d/dt_ladder_f25
+"""
+import argparse
+import concurrent.futures as cf
+import csv
+import math
+import os
+import subprocess
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+OBSERVABLES = {
+    "crumple2d": ["phi", "force", "ab_ratio", "loops", "contacts", "fractal_dimension"],
+    "pack3d": ["phi", "force_R2_over_YI", "bend_R_over_YI", "contacts"],
+}
+
+
+def parse_result(stdout):
+    row = {}
+    for line in stdout.splitlines():
+        if line.startswith("RESULT"):
+            for kv in line.split()[1:]:
+                k, _, v = kv.partition("=")
+                try:
+                    row[k] = float(v)
+                except ValueError:
+                    row[k] = v
+    return row
+
+
+def run(slender, deck, variables, integrator, dt, seed):
+    args = [slender, "-q", os.path.join(ROOT, "examples", deck + ".lua"), "-v", "output=false",
+            "-v", f"integrator={integrator}", "-v", f"dt={dt}", "-v", f"seed={seed}"]
+    for v in variables:
+        args += ["-v", v]
+    row = {"integrator": integrator, "dt": dt, "seed": seed, "status": "ok"}
+    with tempfile.TemporaryDirectory() as tmp:
+        p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
+    res = parse_result(p.stdout)
+    row.update(res)
+    if p.returncode != 0 or "phi" not in res:
+        err = (p.stderr.strip().splitlines() or ["?"])[-1]
+        row.update(status="failed", error=err[:300])
+    return row
+
+
+def stats(values):
+    v = [x for x in values if isinstance(x, float) and math.isfinite(x)]
+    if not v:
+        return math.nan, math.nan
+    mean = sum(v) / len(v)
+    if len(v) < 2:
+        return mean, math.nan
+    var = sum((x - mean) ** 2 for x in v) / (len(v) - 1)
+    return mean, math.sqrt(var / len(v))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--deck", required=True, help="crumple2d/classic, pack3d/low_torsion, ...")
+    ap.add_argument("--var", action="append", default=[], help="a deck variable, e.g. f=25")
+    ap.add_argument("--rung", action="append", required=True,
+                    help="integrator:dt (dt a number or auto); the first is the reference")
+    ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
+    ap.add_argument("--out", required=True, help="output path without extension")
+    a = ap.parse_args()
+
+    family = a.deck.split("/")[0]
+    obs = OBSERVABLES[family]
+    rungs = [tuple(r.split(":", 1)) for r in a.rung]
+    jobs = [(integ, dt, seed) for integ, dt in rungs for seed in a.seeds]
+    rows = []
+    with cf.ThreadPoolExecutor(a.jobs) as ex:
+        futs = {ex.submit(run, a.slender, a.deck, a.var, i, d, s): (i, d, s) for i, d, s in jobs}
+        for fut in cf.as_completed(futs):
+            row = fut.result()
+            rows.append(row)
+            print(f"{row['integrator']:>7} dt={row['dt']:<10} seed={row['seed']} {row['status']} "
+                  f"phi={row.get('phi', math.nan):.4f} wall={row.get('wall_s', math.nan):.1f}s",
+                  flush=True)
+    order = {r: k for k, r in enumerate(rungs)}
+    rows.sort(key=lambda r: (order[(r["integrator"], r["dt"])], r["seed"]))
+
+    keys = ["integrator", "dt", "seed", "status", "steps", "wall_s", "nodes"] + obs + ["jammed", "error"]
+    with open(a.out + ".csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+
+    summary = []
+    for integ, dt in rungs:
+        rs = [r for r in rows if (r["integrator"], r["dt"]) == (integ, dt) and r["status"] == "ok"]
+        failed = sum(1 for r in rows if (r["integrator"], r["dt"]) == (integ, dt)) - len(rs)
+        s = {"rung": f"{integ} dt={dt}", "runs": len(rs), "failed": failed,
+             "wall_s": stats([float(r["wall_s"]) for r in rs])[0],
+             "steps": stats([float(r["steps"]) for r in rs])[0]}
+        for o in obs:
+            s[o] = stats([r.get(o, math.nan) for r in rs])
+        summary.append(s)
+    ref = summary[0]
+    with open(a.out + ".md", "w") as fh:
+        fh.write(f"# Time-step ladder: {a.deck} {' '.join(a.var)}, seeds {a.seeds}\n\n")
+        fh.write("Written by `scripts/dt_ladder.py`. Seed mean ± standard error per rung; the first "
+                 "rung is the reference. A value marked * differs from the reference by more than "
+                 "twice the larger standard error.\n\n")
+        fh.write("| rung | runs (failed) | mean steps | mean wall s | " + " | ".join(obs) + " |\n")
+        fh.write("|---|---|---|---|" + "---|" * len(obs) + "\n")
+        for s in summary:
+            cells = []
+            for o in obs:
+                m, e = s[o]
+                rm, re = ref[o]
+                tol = 2 * max(x for x in (e, re, 0.0) if math.isfinite(x))
+                mark = "*" if s is not ref and math.isfinite(m) and abs(m - rm) > tol else ""
+                cells.append(f"{m:.4g} ± {e:.2g}{mark}")
+            fh.write(f"| {s['rung']} | {s['runs']} ({s['failed']}) | {s['steps']:.3g} | "
+                     f"{s['wall_s']:.1f} | " + " | ".join(cells) + " |\n")
+        bad = [r for r in rows if r["status"] != "ok"]
+        if bad:
+            fh.write("\nFailed runs:\n\n")
+            for r in bad:
+                fh.write(f"- {r['integrator']} dt={r['dt']} seed {r['seed']}: {r.get('error', '')}\n")
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return
+    fig, axes = plt.subplots(1, len(obs), figsize=(3.2 * len(obs), 3.0))
+    for ax, o in zip(axes, obs):
+        for k, s in enumerate(summary):
+            rs = [r for r in rows if f"{r['integrator']} dt={r['dt']}" == s["rung"] and r["status"] == "ok"]
+            ax.scatter([float(r["wall_s"]) for r in rs], [r.get(o, math.nan) for r in rs],
+                       s=12, color=f"C{k}", alpha=0.5)
+            m, e = s[o]
+            ax.errorbar([s["wall_s"]], [m], yerr=[e if math.isfinite(e) else 0], fmt="o",
+                        color=f"C{k}", label=s["rung"])
+        ax.set_xscale("log")
+        ax.set_xlabel("wall s per run")
+        ax.set_title(o)
+    axes[0].legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(a.out + ".png", dpi=110)
+
+
+if __name__ == "__main__":
+    main()

@@ -13,6 +13,7 @@ errors, times 2). Writes <out>.csv (one row per run), <out>.md (a row per rung) 
 
   /usr/bin/python3 scripts/dt_ladder.py --deck crumple2d/classic --var f=25 \
       --rung gear:0.000316 --rung verlet:auto --seeds 1 2 3 4 --out docs/crumple2d/dt_ladder_f25
+      [--reuse docs/crumple2d/dt_ladder_f25.csv]   # keep the runs it has, add the rest
 """
 import argparse
 import concurrent.futures as cf
@@ -43,12 +44,13 @@ def parse_result(stdout):
     return row
 
 
-def run(slender, deck, variables, integrator, dt, seed):
-    args = [slender, "-q", os.path.join(ROOT, "examples", deck + ".lua"), "-v", "output=false",
+def run(slender, examples, deck, variables, rung, seed):
+    integrator, dt, *extra = rung.split(":")
+    args = [slender, "-q", os.path.join(examples, deck + ".lua"), "-v", "output=false",
             "-v", f"integrator={integrator}", "-v", f"dt={dt}", "-v", f"seed={seed}"]
-    for v in variables:
+    for v in variables + extra:
         args += ["-v", v]
-    row = {"integrator": integrator, "dt": dt, "seed": seed, "status": "ok"}
+    row = {"rung": rung, "integrator": integrator, "dt": dt, "seed": seed, "status": "ok"}
     with tempfile.TemporaryDirectory() as tmp:
         p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
     res = parse_result(p.stdout)
@@ -75,30 +77,51 @@ def main():
     ap.add_argument("--deck", required=True, help="crumple2d/classic, pack3d/low_torsion, ...")
     ap.add_argument("--var", action="append", default=[], help="a deck variable, e.g. f=25")
     ap.add_argument("--rung", action="append", required=True,
-                    help="integrator:dt (dt a number or auto); the first is the reference")
+                    help="integrator:dt[:var=value...] (dt a number or auto), e.g. "
+                         "verlet:auto:adaptive=false; the first is the reference")
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
+    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"),
+                    help="the example decks (a copy keeps a long ladder on one version)")
+    ap.add_argument("--reuse", help="a CSV of an earlier ladder: its finished runs are not redone")
     ap.add_argument("--out", required=True, help="output path without extension")
     a = ap.parse_args()
 
     family = a.deck.split("/")[0]
     obs = OBSERVABLES[family]
-    rungs = [tuple(r.split(":", 1)) for r in a.rung]
-    jobs = [(integ, dt, seed) for integ, dt in rungs for seed in a.seeds]
+    rungs = a.rung
     rows = []
+    if a.reuse and os.path.exists(a.reuse):
+        with open(a.reuse) as fh:
+            for r in csv.DictReader(fh):
+                r["rung"] = r.get("rung") or f"{r['integrator']}:{r['dt']}"
+                if r["status"] != "ok" or r["rung"] not in rungs:
+                    continue
+                for k, v in r.items():
+                    if k in ("rung", "integrator", "dt", "status", "error"):
+                        continue
+                    try:
+                        r[k] = float(v)
+                    except (TypeError, ValueError):
+                        pass
+                r["seed"] = int(r["seed"])
+                if r["seed"] in a.seeds:
+                    rows.append(r)
+    done = {(r["rung"], r["seed"]) for r in rows}
+    jobs = [(rung, seed) for rung in rungs for seed in a.seeds if (rung, seed) not in done]
     with cf.ThreadPoolExecutor(a.jobs) as ex:
-        futs = {ex.submit(run, a.slender, a.deck, a.var, i, d, s): (i, d, s) for i, d, s in jobs}
+        futs = {ex.submit(run, a.slender, a.examples, a.deck, a.var, r, s): (r, s) for r, s in jobs}
         for fut in cf.as_completed(futs):
             row = fut.result()
             rows.append(row)
-            print(f"{row['integrator']:>7} dt={row['dt']:<10} seed={row['seed']} {row['status']} "
+            print(f"{row['rung']:<28} seed={row['seed']} {row['status']} "
                   f"phi={row.get('phi', math.nan):.4f} wall={row.get('wall_s', math.nan):.1f}s",
                   flush=True)
     order = {r: k for k, r in enumerate(rungs)}
-    rows.sort(key=lambda r: (order[(r["integrator"], r["dt"])], r["seed"]))
+    rows.sort(key=lambda r: (order[r["rung"]], r["seed"]))
 
-    keys = ["integrator", "dt", "seed", "status", "steps", "wall_s", "nodes"] + obs + ["jammed", "error"]
+    keys = ["rung", "integrator", "dt", "seed", "status", "steps", "wall_s", "nodes"] + obs + ["jammed", "error"]
     with open(a.out + ".csv", "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
         w.writeheader()
@@ -106,10 +129,10 @@ def main():
             w.writerow(r)
 
     summary = []
-    for integ, dt in rungs:
-        rs = [r for r in rows if (r["integrator"], r["dt"]) == (integ, dt) and r["status"] == "ok"]
-        failed = sum(1 for r in rows if (r["integrator"], r["dt"]) == (integ, dt)) - len(rs)
-        s = {"rung": f"{integ} dt={dt}", "runs": len(rs), "failed": failed,
+    for rung in rungs:
+        rs = [r for r in rows if r["rung"] == rung and r["status"] == "ok"]
+        failed = sum(1 for r in rows if r["rung"] == rung) - len(rs)
+        s = {"rung": rung, "runs": len(rs), "failed": failed,
              "wall_s": stats([float(r["wall_s"]) for r in rs])[0],
              "steps": stats([float(r["steps"]) for r in rs])[0]}
         for o in obs:
@@ -137,7 +160,7 @@ def main():
         if bad:
             fh.write("\nFailed runs:\n\n")
             for r in bad:
-                fh.write(f"- {r['integrator']} dt={r['dt']} seed {r['seed']}: {r.get('error', '')}\n")
+                fh.write(f"- {r['rung']} seed {r['seed']}: {r.get('error', '')}\n")
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -147,7 +170,7 @@ def main():
     fig, axes = plt.subplots(1, len(obs), figsize=(3.2 * len(obs), 3.0))
     for ax, o in zip(axes, obs):
         for k, s in enumerate(summary):
-            rs = [r for r in rows if f"{r['integrator']} dt={r['dt']}" == s["rung"] and r["status"] == "ok"]
+            rs = [r for r in rows if r["rung"] == s["rung"] and r["status"] == "ok"]
             ax.scatter([float(r["wall_s"]) for r in rs], [r.get(o, math.nan) for r in rs],
                        s=12, color=f"C{k}", alpha=0.5)
             m, e = s[o]

@@ -178,6 +178,10 @@ ParamSpec group_spec() {
 ParamSpec thermo_spec() {
   ParamSpec s("command", "thermo", "sim:thermo{...}: console and CSV output of chosen columns");
   s.integer("every", "steps between lines (0: off)").def(0.0).min(0);
+  s.real("interval",
+         "time between lines, instead of every (the same output at any dt and under an "
+         "adaptive step)")
+      .positive();
   s.add("columns", ParamType::StringList,
         "step, time, dt, nodes, ke, pe, etotal, fmax, energy.<category>, <id>.<key>")
       .def(std::vector<std::string>{"step", "time", "ke", "pe", "etotal"});
@@ -597,6 +601,9 @@ int l_thermo(lua_State* L) {
   Simulation& sim = sim_arg(L);
   auto p = thermo_spec().validate(to_raw(L, 2));
   sim.thermo.every = p.integer("every");
+  sim.thermo.interval = p.has("interval") ? p.real("interval") : 0.0;
+  if (sim.thermo.every > 0 && sim.thermo.interval > 0)
+    throw InputError("thermo: give every (steps) or interval (time), not both");
   sim.thermo.columns = p.strings("columns");
   sim.thermo.file = p.has("file") ? p.str("file") : "";
   sim.thermo.append = p.boolean("append");

@@ -772,13 +772,14 @@ void Simulation::write_thermo(bool header) {
   }
 }
 
-void Simulation::after_step(long k, bool last) {
-  const bool thermo_now = thermo.every > 0 && step % thermo.every == 0;
+void Simulation::after_step(long k, bool last, double t0) {
+  const bool thermo_now = thermo_cadence().due(step, t0, time);
+  thermo_written_ = thermo_now;
   // the state a run stopped in (jammed, a threshold) is its result: every dump
   // (trajectory, checkpoint) gets it, on or off its period
   const bool stopping = !stop_reason_.empty();
   auto due = [&](const DumpStyle& d) {
-    return d.every() > 0 && (stopping || step % d.every() == 0);
+    return d.cadence().active() && (stopping || d.cadence().due(step, t0, time));
   };
   bool dump_now = false;
   for (auto& d : dumps_) dump_now = dump_now || due(*d);
@@ -796,8 +797,8 @@ void Simulation::run(const RunOptions& opt) {
   last_stop_.clear();
   setup_run();
   for (auto& d : dumps_)
-    if (d->every() > 0 && step % d->every() == 0) d->write(*this);
-  if (thermo.every > 0) write_thermo(true);
+    if (d->cadence().due_at(step, time)) d->write(*this);
+  if (thermo_cadence().active()) write_thermo(true);
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   auto last_progress = t0;
@@ -809,13 +810,14 @@ void Simulation::run(const RunOptions& opt) {
     // requested or nominal "auto" step): dense packings load a node with several deep
     // contacts, which the nominal estimate does not know
     if (adaptive) dt = std::min(dt_cap, integrator_->safety() * stability_limit() / omega_now());
+    const double t_start = time;
     integrator_->step(*this);
     ++step;
     time += dt;
-    after_step(k, k == opt.steps || !stop_reason_.empty());
+    after_step(k, k == opt.steps || !stop_reason_.empty(), t_start);
     if (!stop_reason_.empty()) {
       if (verbose) std::printf("run stopped at step %ld: %s\n", step, stop_reason_.c_str());
-      if (thermo.every > 0 && step % thermo.every != 0) write_thermo(false);
+      if (thermo_cadence().active() && !thermo_written_) write_thermo(false);
       break;
     }
     if (opt.callback && opt.every > 0 && k % opt.every == 0) {
@@ -869,16 +871,18 @@ long Simulation::minimize(double ftol, long max_steps, const std::string& method
   long taken = 0;
   try {
     setup_run();
-    if (thermo.every > 0) write_thermo(true);
+    if (thermo_cadence().active()) write_thermo(true);
+    thermo_written_ = true;
     for (; taken < max_steps; ++taken) {
       if (settled()) break;
+      const double t0 = time;
       integrator_->step(*this);
       ++step;
       if (clock) time += dt;
-      after_step(taken + 1, false);
+      after_step(taken + 1, false, t0);
     }
     check_guard(taken);
-    if (thermo.every > 0 && step % thermo.every != 0) write_thermo(false);
+    if (thermo_cadence().active() && !thermo_written_) write_thermo(false);
     for (auto& d : dumps_) d->flush();
   } catch (...) {
     if (!dynamics) integrator_ = std::move(saved);

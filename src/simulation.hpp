@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cadence.hpp"
 #include "nodes.hpp"
 #include "params.hpp"
 #include "style.hpp"
@@ -34,7 +35,8 @@ struct GuardOptions {
 };
 
 struct ThermoOptions {
-  long every = 0;
+  long every = 0;         // steps between lines, or
+  double interval = 0.0;  // time between lines
   std::vector<std::string> columns{"step", "time", "ke", "pe", "etotal"};
   std::string file;
   bool append = false;  // continue an existing CSV (a restarted run)
@@ -190,9 +192,12 @@ class Simulation {
   // Resolves which fixes act at which stage and lets styles bind to the scene.
   void build_schedule();
   void check_guard(long step_in_run);
-  // Guard, thermo and dumps after step k of a run or minimisation.
-  void after_step(long k, bool last);
+  // Guard, thermo and dumps after step k of a run or minimisation, which took the clock
+  // from t0 to time.
+  void after_step(long k, bool last, double t0);
   void write_thermo(bool header);
+  Cadence thermo_cadence() const { return Cadence{thermo.every, thermo.interval}; }
+  bool thermo_written_ = false;  // the last step wrote a thermo line
   void resolve_dt();
   void fail(const std::string& what, long bad_step);
 

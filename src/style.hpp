@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cadence.hpp"
 #include "nodes.hpp"
 #include "params.hpp"
 
@@ -145,9 +146,16 @@ class ComputeStyle : public Style {
 class DumpStyle : public Style {
  public:
   static const char* family() { return "dump"; }
-  virtual long every() const = 0;
+  // When a frame is due: every N steps or every T time units (the style's every/interval).
+  const Cadence& cadence() const { return cadence_; }
   virtual void write(Simulation& sim) = 0;
   virtual void flush() {}
+
+ protected:
+  void set_cadence(const Cadence& c) { cadence_ = c; }
+
+ private:
+  Cadence cadence_;
 };
 
 class IntegratorStyle : public Style {

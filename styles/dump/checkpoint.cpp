@@ -1,4 +1,4 @@
-// Periodic checkpoints: the full restartable state every N steps, written
+// Periodic checkpoints: the full restartable state every N steps or T time units, written
 // atomically. "%d" in the file name is replaced by the step number.
 #include <string>
 
@@ -10,15 +10,16 @@ namespace slender {
 class CheckpointDump : public DumpStyle {
  public:
   static ParamSpec spec(const std::string& name) {
-    ParamSpec s("dump", name,
-                "restart file (HDF5) every N steps, written atomically (temp + rename)");
+    ParamSpec s(
+        "dump", name,
+        "restart file (HDF5) every N steps or T time units, written atomically (temp + rename)");
     s.string("file", "checkpoint file; %d is replaced by the step").required();
-    s.integer("every", "steps between checkpoints").required().min(1);
+    Cadence::declare(s, "checkpoints");
     return s;
   }
-  CheckpointDump(Simulation&, const ParamValues& p)
-      : file_(p.str("file")), every_(p.integer("every")) {}
-  long every() const override { return every_; }
+  CheckpointDump(Simulation&, const ParamValues& p) : file_(p.str("file")) {
+    set_cadence(Cadence::from(p, "dump style 'checkpoint'", true));
+  }
   void write(Simulation& sim) override {
     if (sim.step == 0 && sim.time == 0.0) return;  // nothing to restart from yet
     std::string path = file_;
@@ -29,7 +30,6 @@ class CheckpointDump : public DumpStyle {
 
  private:
   std::string file_;
-  long every_;
 };
 
 }  // namespace slender

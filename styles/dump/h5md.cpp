@@ -16,7 +16,7 @@ class H5mdDump : public DumpStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("dump", name, "H5MD trajectory (HDF5) with an XDMF side file for ParaView");
     s.string("file", "output file (.h5)").required();
-    s.integer("every", "steps between frames").required().min(1);
+    Cadence::declare(s, "frames");
     s.add("fields", ParamType::StringList,
           "per-node fields: position, velocity, force, mass, or any node property")
         .def(std::vector<std::string>{"position"});
@@ -25,10 +25,11 @@ class H5mdDump : public DumpStyle {
   }
   H5mdDump(Simulation& sim, const ParamValues& p)
       : file_(p.str("file")),
-        every_(p.integer("every")),
+
         fields_(p.strings("fields")),
         xdmf_(p.boolean("xdmf")),
         dim_(sim.dimension()) {
+    set_cadence(Cadence::from(p, "dump style 'h5md'", true));
     bool has_pos = false;
     for (auto& f : fields_) has_pos = has_pos || f == "position";
     if (!has_pos) fields_.insert(fields_.begin(), "position");
@@ -57,7 +58,6 @@ class H5mdDump : public DumpStyle {
     edges_ = std::make_unique<h5::TimeSeries>(conn, "edges", 2, true);
     h5::attr_string(conn, "particles_group", "/particles/all");
   }
-  long every() const override { return every_; }
 
   void write(Simulation& sim) override {
     auto& n = sim.nodes();
@@ -155,7 +155,6 @@ class H5mdDump : public DumpStyle {
   }
 
   std::string file_;
-  long every_;
   std::vector<std::string> fields_;
   bool xdmf_;
   int dim_;

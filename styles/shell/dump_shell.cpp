@@ -22,7 +22,7 @@ class ShellDump : public DumpStyle {
                 "shell surface (limit positions on the control triangles) with per-face fields, "
                 "HDF5 + XDMF");
     s.string("file", "output file (.h5)").required();
-    s.integer("every", "steps between frames").required().min(1);
+    Cadence::declare(s, "frames");
     s.string("mesh", "surface created by sim:mesh").required();
     s.add("faces", ParamType::StringList,
           "per-face fields as <style id>.<key>, e.g. koiter.Ub, koiter.Us, contact/shell.contact")
@@ -30,7 +30,8 @@ class ShellDump : public DumpStyle {
     return s;
   }
   ShellDump(Simulation& sim, const ParamValues& p)
-      : file_(p.str("file")), every_(p.integer("every")), faces_(p.strings("faces")) {
+      : file_(p.str("file")), faces_(p.strings("faces")) {
+    set_cadence(Cadence::from(p, "dump style 'shell'", true));
     const Surface* s = sim.topology().find_surface(p.str("mesh"));
     if (!s) throw InputError("dump 'shell': no mesh named '" + p.str("mesh") + "'");
     mesh_ = s->mesh;
@@ -57,7 +58,6 @@ class ShellDump : public DumpStyle {
       series_.push_back(std::make_unique<h5::TimeSeries>(frames_g_, n, 1, false));
     }
   }
-  long every() const override { return every_; }
   void write(Simulation& sim) override {
     const auto& x = sim.nodes().x;
     std::vector<double> buf;
@@ -117,7 +117,6 @@ class ShellDump : public DumpStyle {
   }
 
   std::string file_;
-  long every_;
   std::vector<std::string> faces_, names_;
   std::shared_ptr<const shell::GhostedMesh> mesh_;
   int base_ = 0;

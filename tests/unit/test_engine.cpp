@@ -443,3 +443,40 @@ TEST(LowestStiffness, FreeCosseratRodHasZeroModesOnly) {
   EXPECT_EQ(r.dofs, 6 * 3 + 5 * 3);
   EXPECT_NEAR(r.lowest, 0.0, 1e-7);
 }
+
+// A thermo interval (time) writes its lines at the same times whatever the step: each
+// multiple of the interval once, at the first step that reaches it.
+TEST(Thermo, IntervalWritesTheSameTimesAtAnyStep) {
+  auto times_at = [](double dt) {
+    Simulation s(2, 9);
+    s.verbose = false;
+    s.add_chain("w", wiggly_chain(5, 2, 8, 0.2), 1.0, false);
+    s.add_bond("spring", P({{"k", 200.0}}));
+    s.set_integrator("verlet", P({{"dt", dt}}));
+    s.thermo.interval = 0.05;
+    s.thermo.columns = {"step", "time"};
+    s.thermo.file = "thermo_interval.csv";
+    s.run(RunOptions{static_cast<long>(std::lround(0.2 / dt)), 0, {}});
+    std::ifstream in("thermo_interval.csv");
+    std::string line;
+    std::getline(in, line);
+    std::vector<double> t;
+    while (std::getline(in, line)) t.push_back(std::stod(line.substr(line.find(',') + 1)));
+    std::remove("thermo_interval.csv");
+    return t;
+  };
+  const auto a = times_at(0.001), b = times_at(0.0005);
+  ASSERT_EQ(a.size(), 5u);  // t = 0, 0.05, 0.1, 0.15, 0.2
+  ASSERT_EQ(b.size(), 5u);
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i], 0.05 * static_cast<double>(i), 1e-9);
+    EXPECT_NEAR(b[i], a[i], 1e-9);
+  }
+  // an interval that no step lands on exactly: one line per multiple passed
+  Cadence c{0, 0.3};
+  int lines = 0;
+  for (int k = 1; k <= 1000; ++k) lines += c.due(k, (k - 1) * 0.007, k * 0.007);
+  EXPECT_EQ(lines, static_cast<int>(std::floor(1000 * 0.007 / 0.3)));
+  EXPECT_TRUE(c.due_at(0, 0.0));
+  EXPECT_FALSE(c.due_at(5, 0.035));
+}

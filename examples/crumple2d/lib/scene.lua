@@ -68,9 +68,11 @@ function M.build(p)
   -- "auto" step is 5.6x larger: it assumes one contact of overlap d/10 per node,
   -- while dense packings load nodes with several deeper contacts and Gear q = 5 is
   -- stable only for omega dt < 0.42.
+  -- -v integrator=verlet | gear | gear4 | gear5 | gear6 (gear: q = 5) | ...
   local integrator = slender.var("integrator", "verlet")
-  if integrator == "gear" then
-    sim:integrator("gear", { values = 5, dt = slender.var("dt", 0.01 * math.sqrt(m / k1)) })
+  local q = integrator:match("^gear(%d?)$")
+  if q then
+    sim:integrator("gear", { values = tonumber(q) or 5, dt = slender.var("dt", 0.01 * math.sqrt(m / k1)) })
   elseif integrator == "verlet" then
     sim:integrator("verlet", { dt = slender.var("dt", "auto"),
                                adaptive = slender.var("adaptive", true) })
@@ -94,13 +96,23 @@ function M.build(p)
                     "bend2d/hysteresis.dissipated", "shape.ratio", "shape.winding",
                     "shape.net_winding", "ke", "count.nodes" }
   if with_fractal then table.insert(columns, 9, "frac.D") end
-  sim:thermo { every = slender.var("thermo_every", 20000), file = name .. "_thermo.csv",
-    append = restart ~= "", columns = columns }
+  -- output cadences in time, so that they mean the same wire at any step: a thermo line per
+  -- half a diameter fed per channel, a frame per 2 d (-v thermo_every= / dump_every= take
+  -- steps instead)
+  local function cadence(steps_var, length)
+    local n = slender.var(steps_var, 0)
+    if n > 0 then return { every = n } end
+    return { interval = length / s }
+  end
+  local th = cadence("thermo_every", slender.var("thermo_length", 0.5 * d))
+  th.file, th.append, th.columns = name .. "_thermo.csv", restart ~= "", columns
+  sim:thermo(th)
   if output then
     -- a restarted run writes a new trajectory file rather than replacing the first
     local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
-    sim:dump("traj", "h5md", { file = traj, every = slender.var("dump_every", 50000),
-                               fields = { "position", "bend.plastic_curvature" } })
+    local dp = cadence("dump_every", slender.var("dump_length", 2 * d))
+    dp.file, dp.fields = traj, { "position", "bend.plastic_curvature" }
+    sim:dump("traj", "h5md", dp)
   end
   -- long runs: -v checkpoint_every=N writes <name>_restart.h5 every N steps;
   -- -v restart=<file> continues from it (thermo CSV appended)

@@ -76,9 +76,11 @@ function M.build(p)
     -- sphere at phi = 1.5 (a/R)^2; at R = 20 that head-on hit passes F_stop = 39 (the
     -- run stopped at phi = 0.004), so R = 20 runs use 3 (a/R)^2
     jam_min_phi = slender.var("jam_min_phi", 0.0) })
+  -- -v integrator=verlet | gear | gear4 | gear5 | gear6 (gear: q = 6) | ...
   local integrator = slender.var("integrator", "gear")
-  if integrator == "gear" then
-    sim:integrator("gear", { values = 6, dt = slender.var("dt", "auto") })
+  local q = integrator:match("^gear(%d?)$")
+  if q then
+    sim:integrator("gear", { values = tonumber(q) or 6, dt = slender.var("dt", "auto") })
   elseif integrator == "verlet" then
     sim:integrator("verlet", { dt = slender.var("dt", "auto"),
                                adaptive = slender.var("adaptive", true) })
@@ -96,13 +98,22 @@ function M.build(p)
   if pcall(sim.value, sim, "rod/cosserat.misalignment") then
     columns[#columns + 1] = "rod/cosserat.misalignment"
   end
-  sim:thermo { every = slender.var("thermo_every", 10000), file = name .. "_thermo.csv",
-    append = restart ~= "", columns = columns }
+  -- output cadences in time, so that they mean the same rod at any step: a thermo line per
+  -- half a radius fed, a frame per 4 a (-v thermo_every= / dump_every= take steps instead)
+  local function cadence(steps_var, length)
+    local n = slender.var(steps_var, 0)
+    if n > 0 then return { every = n } end
+    return { interval = length / speed }
+  end
+  local th = cadence("thermo_every", slender.var("thermo_length", 0.5 * a))
+  th.file, th.append, th.columns = name .. "_thermo.csv", restart ~= "", columns
+  sim:thermo(th)
   if output then
     -- a restarted run writes a new trajectory file rather than replacing the first
     local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
-    sim:dump("traj", "h5md", { file = traj, every = slender.var("dump_every", 50000),
-                               fields = { "position", "bend.energy" } })
+    local dp = cadence("dump_every", slender.var("dump_length", 4 * a))
+    dp.file, dp.fields = traj, { "position", "bend.energy" }
+    sim:dump("traj", "h5md", dp)
   end
   -- long runs (R >= 20 takes hours to days): -v checkpoint_every=N writes
   -- <name>_restart.h5 every N steps; -v restart=<file> continues from it (thermo CSV

@@ -1,5 +1,6 @@
 -- Purpose: the thesis' plastic scene (W2-3, MODELS.md §7.2): starts like the classic
 -- one, then the symmetry breaks and loops rearrange; higher final packing density.
--- Expected run time: f = 10 (fast mode, -v f=10): ~1.5 min; f = 100: many hours.
+-- Expected run time: f = 10 (fast mode, -v fast=1): ~2 s; f = 25: ~40 s; f = 100: not yet
+-- timed (twice the classic's steps per unit of phi: its feed is half as fast).
 -- Thesis parameters: f = 100, kappa_theta = 0.02, mu_st = 5, s = 0.04 (feed speed).
 require("lib.scene").run { name = "plastic", f = 100, yield = 0.02, mu = 5.0, s = 0.04 }

@@ -533,14 +533,7 @@ void Simulation::setup_run() {
     for (auto& n : nodes_.property_names()) std::printf(" %s", n.c_str());
     std::printf("\n");
   }
-  good_x_ = nodes_.x;
-  good_v_ = nodes_.v;
-  good_q_.clear();
-  good_qv_.clear();
-  for (auto& c : coords_) {
-    good_q_.push_back(c->q->values());
-    good_qv_.push_back(c->v->values());
-  }
+  save_good_state();
   good_step_ = step;
   good_time_ = time;
   energy_scale_ = std::max(energy_scale_, kinetic_energy() + std::abs(potential_energy()));
@@ -602,6 +595,20 @@ void Simulation::fail(const std::string& what, long bad_step) {
     for (auto& d : dumps_) d->flush();
   }
   throw InstabilityError(os.str());
+}
+
+// The state a failed run returns to. Copy-assignment into the kept vectors reuses their
+// memory (the guard runs every few steps; the quaternion snapshots were reallocated each
+// time).
+void Simulation::save_good_state() {
+  good_x_ = nodes_.x;
+  good_v_ = nodes_.v;
+  good_q_.resize(coords_.size());
+  good_qv_.resize(coords_.size());
+  for (size_t k = 0; k < coords_.size(); ++k) {
+    good_q_[k] = coords_[k]->q->values();
+    good_qv_[k] = coords_[k]->v->values();
+  }
 }
 
 void Simulation::check_guard(long) {
@@ -671,14 +678,7 @@ void Simulation::check_guard(long) {
     }
   }
   energy_scale_ = std::max(energy_scale_, ke + pe);
-  good_x_ = nodes_.x;
-  good_v_ = nodes_.v;
-  good_q_.clear();
-  good_qv_.clear();
-  for (auto& c : coords_) {
-    good_q_.push_back(c->q->values());
-    good_qv_.push_back(c->v->values());
-  }
+  save_good_state();
   good_step_ = step;
   good_time_ = time;
 }

@@ -192,6 +192,7 @@ class Simulation {
   // Resolves which fixes act at which stage and lets styles bind to the scene.
   void build_schedule();
   void check_guard(long step_in_run);
+  void save_good_state();
   // Guard, thermo and dumps after step k of a run or minimisation, which took the clock
   // from t0 to time.
   void after_step(long k, bool last, double t0);

@@ -88,7 +88,7 @@ class KoiterShell : public ShellStyle {
         Y_(p.real("young")),
         nu_(p.real("poisson")),
         rho_(p.real("density")),
-        boundary_(p.str("boundary")),
+        boundary_(boundary_rule(p.str("boundary"))),
         k_ghost_(p.has("k_ghost") ? p.real("k_ghost") : p.real("young") * p.real("thickness")),
         lambda_(p.real("ghost_lambda")),
         reflection_(p.str("ghost_partner") == "reflection"),
@@ -256,7 +256,8 @@ class KoiterShell : public ShellStyle {
   }
 
   bool kinematic_ghosts() const {
-    return boundary_ == "mirror" || boundary_ == "simply_supported" || boundary_ == "clamped";
+    return boundary_ == Boundary::kMirror || boundary_ == Boundary::kSimplySupported ||
+           boundary_ == Boundary::kClamped;
   }
 
   // masses, and the node masks of the boundary rules
@@ -274,12 +275,12 @@ class KoiterShell : public ShellStyle {
         lumped[gh.node] = mean_real;
       }
     for (int i = 0; i < g.mesh.n_nodes(); ++i) m[base_ + i] = lumped[i];
-    if (boundary_ == "combined" || boundary_ == "free_ghosts") return;
+    if (boundary_ == Boundary::kCombined || boundary_ == Boundary::kFreeGhosts) return;
     auto& mask = sim.nodes().require<int>("dof_mask", 0);
     for (auto& gh : g.ghosts) mask[base_ + gh.node] = 7;
-    if (boundary_ == "simply_supported" || boundary_ == "clamped")
+    if (boundary_ == Boundary::kSimplySupported || boundary_ == Boundary::kClamped)
       for (int b : g.boundary) mask[base_ + b] = 7;
-    if (boundary_ == "clamped")
+    if (boundary_ == Boundary::kClamped)
       for (int r : g.first_row) mask[base_ + r] = 7;
     for (int i = 0; i < g.mesh.n_nodes(); ++i)
       if (mask[base_ + i] == 7) sim.nodes().v[base_ + i].setZero();
@@ -389,10 +390,10 @@ class KoiterShell : public ShellStyle {
 
   void place_ghosts(std::vector<Vec3>& x) const {
     const auto& g = mesh();
-    if (boundary_ == "mirror") {
+    if (boundary_ == Boundary::kMirror) {
       for (auto& gh : g.ghosts)
         x[base_ + gh.node] = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
-    } else if (boundary_ == "simply_supported") {
+    } else if (boundary_ == Boundary::kSimplySupported) {
       for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
         const int gn = g.ghosts[k].node, pn = partner_[k];
         x[base_ + gn] = g.mesh.x[gn] - (x[base_ + pn] - g.mesh.x[pn]);
@@ -405,7 +406,7 @@ class KoiterShell : public ShellStyle {
   void map_ghost_forces(const std::vector<Vec3>& x, std::vector<Vec3>& f) {
     const auto& g = mesh();
     ghost_energy_ = 0;
-    if (boundary_ == "mirror") {
+    if (boundary_ == Boundary::kMirror) {
       for (auto& gh : g.ghosts) {
         const Vec3 fg = f[base_ + gh.node];
         f[base_ + gh.b0] += fg;
@@ -413,13 +414,13 @@ class KoiterShell : public ShellStyle {
         f[base_ + gh.interior] -= fg;
         f[base_ + gh.node].setZero();
       }
-    } else if (boundary_ == "simply_supported") {
+    } else if (boundary_ == Boundary::kSimplySupported) {
       for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
         const int gn = g.ghosts[k].node;
         f[base_ + partner_[k]] -= f[base_ + gn];
         f[base_ + gn].setZero();
       }
-    } else if (boundary_ == "combined") {
+    } else if (boundary_ == Boundary::kCombined) {
       const double dead = lambda_ * mean_edge_;
       for (auto& gh : g.ghosts) {
         const Vec3 mirror = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
@@ -498,7 +499,16 @@ class KoiterShell : public ShellStyle {
 
   std::string mesh_name_;
   double h_, Y_, nu_, rho_;
-  std::string boundary_;
+  // the ghost rule as a value, not the deck's string: it is tested every step
+  enum class Boundary { kCombined, kMirror, kFreeGhosts, kClamped, kSimplySupported };
+  static Boundary boundary_rule(const std::string& s) {
+    if (s == "mirror") return Boundary::kMirror;
+    if (s == "free_ghosts") return Boundary::kFreeGhosts;
+    if (s == "clamped") return Boundary::kClamped;
+    if (s == "simply_supported") return Boundary::kSimplySupported;
+    return Boundary::kCombined;
+  }
+  Boundary boundary_;
   double k_ghost_, lambda_;
   bool reflection_;
   bool ghost_reaction_;

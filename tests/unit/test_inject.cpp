@@ -58,7 +58,11 @@ TEST(WireInjectionFix, InjectionForceBalancesTheDragOfTheWire) {
   EXPECT_NEAR(sim->fix("feed").value("phi"), 20.0 / (M_PI * 100.0), 1.5 / (M_PI * 100.0));
 }
 
-TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
+namespace {
+
+// A straight wire fed from the left whose far end is held: pushing it loads it until the
+// averaged injection force passes jam_force = 50.
+std::unique_ptr<Simulation> clamped_feed(double dt, double jam_time) {
   auto sim = std::make_unique<Simulation>(2, 1);
   sim->verbose = false;
   std::vector<Vec3> pts;
@@ -66,7 +70,6 @@ TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
   sim->add_chain("wire", pts, 1.0, false);
   sim->add_bond("spring", P({{"k", 1000.0}}));
   sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
-  // the far end is held: pushing a clamped straight wire loads it until the stop
   sim->set_group("far", {24});
   sim->add_fix("hold", "clamp", P({{"group", std::string("far")}}));
   sim->add_fix("feed", "inject/wire",
@@ -75,8 +78,15 @@ TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
                   {"speed", 0.01},
                   {"channels", std::string("left")},
                   {"jam_force", 50.0},
-                  {"jam_time", 0.2}}));
-  sim->set_integrator("gear", P({{"dt", 0.002}}));
+                  {"jam_time", jam_time}}));
+  sim->set_integrator("gear", P({{"dt", dt}}));
+  return sim;
+}
+
+}  // namespace
+
+TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
+  auto sim = clamped_feed(0.002, 0.2);
   sim->run(RunOptions{10000000, 0, {}});
   EXPECT_LT(sim->step, 10000000);
   EXPECT_EQ(sim->fix("feed").value("jammed"), 1.0);
@@ -85,28 +95,11 @@ TEST(WireInjectionFix, JammingStopsTheRunCleanly) {
 }
 
 TEST(WireInjectionFix, JamWindowIsATimeSoTheStopDoesNotDependOnTheStep) {
-  // A clamped wire pushed at constant speed: the injection force ramps up, and its
-  // average over the last jam_time lags the force by about jam_time / 2. With a window of
-  // steps the lag would halve with dt (about 10 time units here); with a window in time
-  // the stop comes at the same time at both steps.
+  // The injection force ramps up, and its average over the last jam_time lags the force
+  // by about jam_time / 2. With a window of steps the lag would halve with dt (about 10
+  // time units here); with a window in time the stop comes at the same time at both steps.
   auto jam_time_at = [](double dt) {
-    auto sim = std::make_unique<Simulation>(2, 1);
-    sim->verbose = false;
-    std::vector<Vec3> pts;
-    for (int i = 0; i < 25; ++i) pts.emplace_back(-12.0 + i, 0, 0);
-    sim->add_chain("wire", pts, 1.0, false);
-    sim->add_bond("spring", P({{"k", 1000.0}}));
-    sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
-    sim->set_group("far", {24});
-    sim->add_fix("hold", "clamp", P({{"group", std::string("far")}}));
-    sim->add_fix("feed", "inject/wire",
-                 P({{"chain", std::string("wire")},
-                    {"radius", 10.0},
-                    {"speed", 0.01},
-                    {"channels", std::string("left")},
-                    {"jam_force", 50.0},
-                    {"jam_time", 40.0}}));
-    sim->set_integrator("gear", P({{"dt", dt}}));
+    auto sim = clamped_feed(dt, 40.0);
     sim->run(RunOptions{100000000, 0, {}});
     EXPECT_EQ(sim->fix("feed").value("jammed"), 1.0);
     return sim->time;

@@ -359,21 +359,19 @@ void Simulation::cache_frequencies() {
   measuring_.clear();
   for (auto& sh : shells_) omega2_fixed_ += std::pow(sh->max_frequency(*this), 2);
   for (auto& b : bonds_) omega2_fixed_ += std::pow(b->max_frequency(*this), 2);
-  for (auto& p : pairs_) measuring_.emplace_back(p.get(), p->max_frequency(*this));
-  for (auto& f : fixes_) measuring_.emplace_back(f.get(), f->max_frequency(*this));
+  for (auto& p : pairs_) measuring_.push_back({p.get(), p.get(), nullptr, p->max_frequency(*this)});
+  for (auto& f : fixes_) measuring_.push_back({f.get(), nullptr, f.get(), f->max_frequency(*this)});
 }
 
 double Simulation::omega_now(std::string* who) const {
   double w2 = omega2_fixed_, best = 0.0;
-  for (auto& [st, nominal] : measuring_) {
-    double measured = 0.0;
-    if (auto* p = dynamic_cast<const PairStyle*>(st)) measured = p->measured_frequency();
-    if (auto* f = dynamic_cast<const FixStyle*>(st)) measured = f->measured_frequency();
-    const double w = std::max(nominal, measured);
+  for (const auto& m : measuring_) {
+    const double measured = m.pair ? m.pair->measured_frequency() : m.fix->measured_frequency();
+    const double w = std::max(m.nominal, measured);
     w2 += w * w;
-    if (who && measured > nominal && w > best) {
+    if (who && measured > m.nominal && w > best) {
       best = w;
-      *who = st->id() + " (measured)";
+      *who = m.style->id() + " (measured)";
     }
   }
   return std::sqrt(w2);
@@ -520,8 +518,8 @@ void Simulation::setup_run() {
     for (auto& sh : shells_)
       std::printf(" shell %s %.4g;", sh->id().c_str(), sh->max_frequency(*this));
     for (auto& b : bonds_) std::printf(" bond %s %.4g;", b->id().c_str(), b->max_frequency(*this));
-    for (auto& [st, w] : measuring_)
-      if (w > 0) std::printf(" %s %.4g;", st->id().c_str(), w);
+    for (const auto& m : measuring_)
+      if (m.nominal > 0) std::printf(" %s %.4g;", m.style->id().c_str(), m.nominal);
     std::printf("\n  forces:");
     for (auto& s : shells_) std::printf(" shell %s;", s->id().c_str());
     for (auto& b : bonds_) std::printf(" bond %s;", b->id().c_str());

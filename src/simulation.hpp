@@ -235,10 +235,17 @@ class Simulation {
   long good_step_ = -1;
   double good_time_ = 0.0;
   double energy_scale_ = 0.0;
-  // nominal frequencies cached at the start of a run: omega^2 of the terms that measure
-  // nothing, and each measuring pair or fix with its nominal omega
+  // nominal frequencies cached at the start of a run (a shell whose growth stiffens it
+  // within a run is not followed): omega^2 of the terms that measure nothing, and each
+  // contact pair or fix with its nominal omega
   double omega2_fixed_ = 0.0;
-  std::vector<std::pair<const Style*, double>> measuring_;
+  struct Measuring {
+    const Style* style;
+    const PairStyle* pair;  // one of pair and fix is set
+    const FixStyle* fix;
+    double nominal;
+  };
+  std::vector<Measuring> measuring_;
   void cache_frequencies();
 };
 

@@ -44,20 +44,26 @@ def parse_result(stdout):
     return row
 
 
-def run(slender, examples, deck, variables, rung, seed):
-    integrator, dt, *extra = rung.split(":")
-    args = [slender, "-q", os.path.join(examples, deck + ".lua"), "-v", "output=false",
-            "-v", f"integrator={integrator}", "-v", f"dt={dt}", "-v", f"seed={seed}"]
-    for v in variables + extra:
+def run_deck(slender, deck_path, variables):
+    """Runs a deck with output=false and the `-v` variables in a scratch folder; returns its
+    RESULT fields with status ok/failed (and the last error line)."""
+    args = [slender, "-q", deck_path, "-v", "output=false"]
+    for v in variables:
         args += ["-v", v]
-    row = {"rung": rung, "integrator": integrator, "dt": dt, "seed": seed, "status": "ok"}
     with tempfile.TemporaryDirectory() as tmp:
         p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
-    res = parse_result(p.stdout)
-    row.update(res)
-    if p.returncode != 0 or "phi" not in res:
-        err = (p.stderr.strip().splitlines() or ["?"])[-1]
-        row.update(status="failed", error=err[:300])
+    row = parse_result(p.stdout)
+    row["status"] = "ok" if p.returncode == 0 and "phi" in row else "failed"
+    if row["status"] != "ok":
+        row["error"] = (p.stderr.strip().splitlines() or ["?"])[-1][:300]
+    return row
+
+
+def run(slender, examples, deck, variables, rung, seed):
+    integrator, dt, *extra = rung.split(":")
+    row = {"rung": rung, "integrator": integrator, "dt": dt, "seed": seed}
+    row.update(run_deck(slender, os.path.join(examples, deck + ".lua"),
+                        [f"integrator={integrator}", f"dt={dt}", f"seed={seed}"] + variables + extra))
     return row
 
 

@@ -77,15 +77,16 @@ function M.build(p)
     -- run stopped at phi = 0.004), so R = 20 runs use 3 (a/R)^2
     jam_min_phi = slender.var("jam_min_phi", 0.0) })
   -- -v integrator=verlet | gear | gear4 | gear5 | gear6 (gear: q = 6) | ...
-  -- Adaptive velocity Verlet at half its stable step: 3.5x (low torsion) and 4.1x (high
+  -- Adaptive velocity Verlet at 0.7 of its stable step: 4.9x (low torsion) and 5.7x (high
   -- torsion) fewer steps than Gear q = 6 at its "auto" step, with phi_max, E_b and the
-  -- contacts within the seed scatter at R = 6 (4 seeds, docs/performance.md)
+  -- contacts within the seed scatter at R = 6 (4 seeds, docs/performance.md); at 0.85 two
+  -- of four low-torsion runs jam early, at 1.2 (fixed) every run blows up (-v safety=)
   local integrator = slender.var("integrator", "verlet")
   local q = integrator:match("^gear(%d?)$")
   if q then
     sim:integrator("gear", { values = tonumber(q) or 6, dt = slender.var("dt", "auto") })
   elseif integrator == "verlet" then
-    sim:integrator("verlet", { dt = slender.var("dt", "auto"),
+    sim:integrator("verlet", { dt = slender.var("dt", "auto"), safety = slender.var("safety", 0.7),
                                adaptive = slender.var("adaptive", true) })
   else
     sim:integrator(integrator, { dt = slender.var("dt", "auto") })

@@ -26,28 +26,55 @@ struct FrictionState {
 // node, deep overlaps), where max_frequency() assumes one contact at a nominal overlap.
 class NodeStiffness {
  public:
-  void add(int i, double k) {
-    if (static_cast<std::size_t>(i) >= k_.size()) k_.resize(static_cast<std::size_t>(i) + 1, 0.0);
-    if (k_[static_cast<std::size_t>(i)] == 0.0) touched_.push_back(i);
-    k_[static_cast<std::size_t>(i)] += k;
-  }
-  // Closes one evaluation: the measured omega, and the row sums cleared for the next.
-  void finish(const std::vector<double>& mass) {
-    double w2 = 0.0;
-    for (int i : touched_) {
+  // The row sums one thread adds (a kernel on T threads adds into part(tid); prepare(T)
+  // first, outside the parallel region).
+  class Part {
+   public:
+    void add(int i, double k) {
       const auto u = static_cast<std::size_t>(i);
-      w2 = std::max(w2, k_[u] / mass[u]);
-      k_[u] = 0.0;
+      if (u >= k_.size()) k_.resize(u + 1, 0.0);
+      if (k_[u] == 0.0) touched_.push_back(i);
+      k_[u] += k;
     }
-    touched_.clear();
+
+   private:
+    friend class NodeStiffness;
+    std::vector<double> k_;
+    std::vector<int> touched_;
+  };
+  void prepare(int threads) {
+    if (parts_.size() < static_cast<std::size_t>(threads))
+      parts_.resize(static_cast<std::size_t>(threads));
+  }
+  Part& part(int tid) { return parts_[static_cast<std::size_t>(tid)]; }
+  void add(int i, double k) { parts_[0].add(i, k); }
+  // Closes one evaluation: the measured omega, and the row sums cleared for the next.
+  // The threads' row sums are added in thread order (deterministic for a thread count).
+  void finish(const std::vector<double>& mass) {
+    Part& p0 = parts_[0];
+    for (std::size_t t = 1; t < parts_.size(); ++t) {
+      Part& p = parts_[t];
+      for (int i : p.touched_) {
+        const auto u = static_cast<std::size_t>(i);
+        p0.add(i, p.k_[u]);
+        p.k_[u] = 0.0;
+      }
+      p.touched_.clear();
+    }
+    double w2 = 0.0;
+    for (int i : p0.touched_) {
+      const auto u = static_cast<std::size_t>(i);
+      w2 = std::max(w2, p0.k_[u] / mass[u]);
+      p0.k_[u] = 0.0;
+    }
+    p0.touched_.clear();
     omega_ = std::sqrt(w2);
   }
   double omega() const { return omega_; }
   void set_omega(double w) { omega_ = w; }
 
  private:
-  std::vector<double> k_;
-  std::vector<int> touched_;
+  std::vector<Part> parts_ = std::vector<Part>(1);
   double omega_ = 0.0;
 };
 

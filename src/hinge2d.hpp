@@ -46,10 +46,13 @@ struct Hinge2d {
     ga = Eigen::Vector2d(-e0.y(), e0.x()) / e0.squaredNorm();
   }
   // Nodal forces of a generalised moment conjugate to zeta: F_j = -M dzeta/dx_j.
-  void apply(std::vector<Vec3>& f, int a, int m, int b, double M) const {
+  void apply(Vec3* f, int a, int m, int b, double M) const {
     f[b].head<2>() -= M * gb;
     f[a].head<2>() -= M * ga;
     f[m].head<2>() += M * (ga + gb);
+  }
+  void apply(std::vector<Vec3>& f, int a, int m, int b, double M) const {
+    apply(f.data(), a, m, b, M);
   }
   // dzeta/dt = sum_j dzeta/dx_j . v_j
   double rate(const std::vector<Vec3>& v, int a, int m, int b) const {

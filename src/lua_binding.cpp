@@ -7,9 +7,11 @@
 
 #include <lua.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -303,11 +305,23 @@ ParamSpec mesh_spec() {
 
 // ------------------------------------------------------------ methods
 
+// -t N, else OMP_NUM_THREADS (a positive integer), else 1.
+int deck_threads(const DeckOptions& opt) {
+  if (opt.threads > 0) return opt.threads;
+  if (const char* env = std::getenv("OMP_NUM_THREADS")) {
+    char* end = nullptr;
+    const long n = std::strtol(env, &end, 10);
+    if (end != env && *end == '\0' && n >= 1) return static_cast<int>(std::min(n, 64L));
+  }
+  return 1;
+}
+
 int l_simulation(lua_State* L) {
   auto p = simulation_spec().validate(to_raw(L, 1));
   auto sim = std::make_unique<Simulation>(static_cast<int>(p.integer("dimension")),
                                           static_cast<std::uint64_t>(p.integer("seed")));
   sim->verbose = !(p.boolean("quiet") || context(L)->opt.quiet);
+  sim->set_threads(deck_threads(context(L)->opt));
   auto* box = static_cast<SimBox*>(lua_newuserdatauv(L, sizeof(SimBox), 1));
   box->sim = sim.release();
   luaL_setmetatable(L, kSimMeta);

@@ -15,6 +15,7 @@ struct DeckOptions {
   std::map<std::string, std::string> vars;  // -v name=value overrides
   bool quiet = false;
   std::string inventory;  // --inventory FILE: one JSON line per simulation when it is freed
+  int threads = 0;        // -t N (0: OMP_NUM_THREADS, else 1) for every simulation of the deck
 };
 
 // Registers the `slender` module (global and for require) in a Lua state.

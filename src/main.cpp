@@ -1,5 +1,6 @@
 // slender: run a Lua deck, list styles, or describe one.
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -10,8 +11,9 @@ namespace {
 
 void usage() {
   std::printf(
-      "usage: slender DECK.lua [-v name=value ...] [-q] [--inventory FILE]\n"
-      "       (--inventory appends what each simulation held, one JSON line each)\n"
+      "usage: slender DECK.lua [-v name=value ...] [-t N] [-q] [--inventory FILE]\n"
+      "       (-t: threads of the force kernels, default OMP_NUM_THREADS or 1;\n"
+      "        --inventory appends what each simulation held, one JSON line each)\n"
       "       slender --list-styles\n"
       "       slender --markdown-styles  (the style reference, docs/styles.md)\n"
       "       slender --style-pages DIR  (one page per style, docs/styles/)\n"
@@ -156,6 +158,15 @@ int main(int argc, char** argv) {
         return 2;
       }
       opt.inventory = argv[++i];
+    } else if (a == "-t") {
+      char* end = nullptr;
+      const long n = i + 1 < argc ? std::strtol(argv[i + 1], &end, 10) : 0;
+      if (i + 1 >= argc || *end != '\0' || n < 1 || n > 64) {
+        std::fprintf(stderr, "slender: -t needs a thread count in [1, 64]\n");
+        return 2;
+      }
+      opt.threads = static_cast<int>(n);
+      ++i;
     } else if (a == "-v") {
       if (i + 1 >= argc || !std::strchr(argv[i + 1], '=')) {
         std::fprintf(stderr, "slender: -v needs name=value\n");

@@ -25,6 +25,16 @@ Simulation::Simulation(int dimension, std::uint64_t seed)
 }
 Simulation::~Simulation() = default;
 
+void Simulation::set_threads(int n) {
+  if (n < 1 || n > kMaxThreads)
+    throw InputError("threads must be in [1, " + std::to_string(kMaxThreads) + "], got " +
+                     std::to_string(n));
+#ifndef _OPENMP
+  if (n > 1) throw InputError("threads > 1: this slender was built without OpenMP");
+#endif
+  threads_ = n;
+}
+
 Chain& Simulation::add_chain(const std::string& name, const std::vector<Vec3>& pos,
                              double mass_per_node, bool closed) {
   if (topo_.find(name)) throw InputError("a chain named '" + name + "' already exists");

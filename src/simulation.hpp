@@ -11,12 +11,14 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cadence.hpp"
 #include "nodes.hpp"
 #include "params.hpp"
 #include "style.hpp"
+#include "threads.hpp"
 #include "topology.hpp"
 
 namespace slender {
@@ -86,6 +88,17 @@ class Simulation {
   const Topology& topology() const { return topo_; }
   std::mt19937_64& rng() { return rng_; }
   std::uint64_t seed() const { return seed_; }
+  // Threads of the force kernels and the integrators (slender -t N, or OMP_NUM_THREADS;
+  // 1: serial). A run is bit-identical to itself for the same thread count.
+  int threads() const { return threads_; }
+  void set_threads(int n);
+  // Per-thread force buffers the kernels share (see threads.hpp).
+  ForceScratch& force_scratch() { return scratch_; }
+  // parallel_forces() onto the node forces with this simulation's threads.
+  template <class Kernel>
+  double parallel_node_forces(std::size_t n, Kernel&& kernel) {
+    return parallel_forces(threads_, scratch_, nodes_.f, n, std::forward<Kernel>(kernel));
+  }
 
   // --- building the scene
   Chain& add_chain(const std::string& name, const std::vector<Vec3>& pos, double mass_per_node,
@@ -205,6 +218,8 @@ class Simulation {
   int dim_;
   std::uint64_t seed_;
   std::mt19937_64 rng_;
+  int threads_ = 1;
+  ForceScratch scratch_;
   NodeStore nodes_;
   Topology topo_;
   std::map<std::string, std::unique_ptr<RegionStyle>> regions_;

@@ -29,22 +29,26 @@ class Bend2dBond : public ChainBondStyle {
   const char* energy_category() const override { return "bend"; }
 
   double compute(Simulation& sim) override {
-    auto& x = sim.nodes().x;
-    auto& f = sim.nodes().f;
+    const auto& x = sim.nodes().x;
+    const auto& v = sim.nodes().v;
     double energy = 0.0;
     for (auto* c : chains(sim)) {
-      const int nh = c->n_hinges();
-      for (int h = 0; h < nh; ++h) {
-        int a, m, b;
-        c->hinge(h, a, m, b);
-        const Hinge2d g(x[a], x[m], x[b]);
-        const double zeta = g.zeta;
-        double moment = k_ * zeta;
-        // dashpot on the turning rate (MODELS.md §2.1)
-        if (gamma_ > 0) moment += gamma_ * g.rate(sim.nodes().v, a, m, b);
-        g.apply(f, a, m, b, moment);
-        energy += 0.5 * k_ * zeta * zeta;
-      }
+      energy += sim.parallel_node_forces(static_cast<std::size_t>(c->n_hinges()),
+                                         [&](int, std::size_t begin, std::size_t end, Vec3* f) {
+                                           double e_part = 0.0;
+                                           for (std::size_t h = begin; h < end; ++h) {
+                                             int a, m, b;
+                                             c->hinge(static_cast<int>(h), a, m, b);
+                                             const Hinge2d g(x[a], x[m], x[b]);
+                                             const double zeta = g.zeta;
+                                             double moment = k_ * zeta;
+                                             // dashpot on the turning rate (MODELS.md §2.1)
+                                             if (gamma_ > 0) moment += gamma_ * g.rate(v, a, m, b);
+                                             g.apply(f, a, m, b, moment);
+                                             e_part += 0.5 * k_ * zeta * zeta;
+                                           }
+                                           return e_part;
+                                         });
     }
     return energy;
   }

@@ -13,6 +13,7 @@
 // Energy reported under "bend" is the recoverable part (1/2 M^2 l0 / K_e in the
 // linear zone, §2.7; the exact integral along the reversible transition beyond it);
 // the energy made unrecoverable by plastic flow is accumulated exactly as "dissipated".
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -155,26 +156,41 @@ class BendHysteresisBond : public ChainBondStyle {
   }
 
   double compute(Simulation& sim) override {
-    auto& x = sim.nodes().x;
-    auto& f = sim.nodes().f;
+    const auto& x = sim.nodes().x;
+    const auto& v = sim.nodes().v;
     double energy = 0.0;
+    // the dissipated energy of threads 1.. is added after the kernel, in thread order;
+    // thread 0 adds straight into the running total (the serial order)
+    std::array<double, kMaxThreads> lost_part{};
     for (auto* c : chains(sim)) {
-      const int nh = c->n_hinges();
-      for (int h = 0; h < nh; ++h) {
-        int a, m, b;
-        c->hinge(h, a, m, b);
-        const double l0 = rest(*c, h), Ke = k_ * l0;
-        const Hinge2d g(x[a], x[m], x[b]);
-        const double zeta = g.zeta;
-        const double kappa = zeta / l0;
-        double& kpl = (*kpl_)[m];
-        double stored = 0.0, lost = 0.0;
-        const double M = moment(kappa, kpl, Ke, &stored, &lost);
-        dissipated_ += lost * l0;
-        // the dashpot adds gamma_r dzeta/dt (MODELS.md §2.1)
-        const double Mt = gamma_ > 0 ? M + gamma_ * g.rate(sim.nodes().v, a, m, b) : M;
-        g.apply(f, a, m, b, Mt);
-        energy += stored * l0;
+      const int T = threads_for(static_cast<std::size_t>(c->n_hinges()), sim.threads());
+      energy += sim.parallel_node_forces(
+          static_cast<std::size_t>(c->n_hinges()),
+          [&](int tid, std::size_t begin, std::size_t end, Vec3* f) {
+            double e_part = 0.0;
+            double& lost_sum = tid == 0 ? dissipated_ : lost_part[static_cast<std::size_t>(tid)];
+            for (std::size_t k = begin; k < end; ++k) {
+              const int h = static_cast<int>(k);
+              int a, m, b;
+              c->hinge(h, a, m, b);
+              const double l0 = rest(*c, h), Ke = k_ * l0;
+              const Hinge2d g(x[a], x[m], x[b]);
+              const double zeta = g.zeta;
+              const double kappa = zeta / l0;
+              double& kpl = (*kpl_)[m];
+              double stored = 0.0, lost = 0.0;
+              const double M = moment(kappa, kpl, Ke, &stored, &lost);
+              lost_sum += lost * l0;
+              // the dashpot adds gamma_r dzeta/dt (MODELS.md §2.1)
+              const double Mt = gamma_ > 0 ? M + gamma_ * g.rate(v, a, m, b) : M;
+              g.apply(f, a, m, b, Mt);
+              e_part += stored * l0;
+            }
+            return e_part;
+          });
+      for (int t = 1; t < T; ++t) {
+        dissipated_ += lost_part[static_cast<std::size_t>(t)];
+        lost_part[static_cast<std::size_t>(t)] = 0.0;
       }
     }
     recoverable_ = energy;

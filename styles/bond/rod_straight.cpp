@@ -34,40 +34,45 @@ class StraightRodBond : public ChainBondStyle {
   const char* energy_category() const override { return "bend"; }
 
   double compute(Simulation& sim) override {
-    auto& x = sim.nodes().x;
-    auto& f = sim.nodes().f;
+    const auto& x = sim.nodes().x;
     double energy = 0.0;
     if (node_energy_)
       for (auto& e : node_energy_->values()) e = 0.0;
     for (auto* c : chains(sim)) {
-      const int nh = c->n_hinges();
       const int ne = c->n_edges();
-      for (int h = 0; h < nh; ++h) {
-        int a, m, b;
-        c->hinge(h, a, m, b);
-        // rest lengths of the two edges at this hinge (§3.1: domain lengths at rest)
-        const int e0i = c->closed ? (h - 1 + ne) % ne : h;
-        const int e1i = c->closed ? h : h + 1;
-        const double l = c->rest_length[e0i] + c->rest_length[e1i];
-        const Vec3 e0 = x[m] - x[a], e1 = x[b] - x[m];
-        const double n0 = e0.norm(), n1 = e1.norm();
-        const double D = n0 * n1 + e0.dot(e1);
-        if (!(D > 1e-12 * n0 * n1)) continue;  // a fully folded hinge has no binormal
-        const Vec3 kb = 2.0 * e0.cross(e1) / D;
-        const double e_hinge = yi_ * kb.squaredNorm() / l;  // (4.4)
-        energy += e_hinge;
-        if (node_energy_) (*node_energy_)[m] = e_hinge;
-        // exact gradients (§3.3); F_k = -(2 YI / l) (grad_k kb)^T kb. With [e]^T = -[e]:
-        // (grad_{i-1} kb)^T kb = (2 kb x e1 + |kb|^2 (e1 + |e1| t0)) / D and
-        // (grad_{i+1} kb)^T kb = (2 kb x e0 - |kb|^2 (e0 + |e0| t1)) / D
-        const double kb2 = kb.squaredNorm();
-        const double s = 2.0 * yi_ / (l * D);
-        const Vec3 fa = -s * (2.0 * kb.cross(e1) + kb2 * (e1 + (n1 / n0) * e0));
-        const Vec3 fb = -s * (2.0 * kb.cross(e0) - kb2 * (e0 + (n0 / n1) * e1));
-        f[a] += fa;
-        f[b] += fb;
-        f[m] -= fa + fb;
-      }
+      energy += sim.parallel_node_forces(
+          static_cast<std::size_t>(c->n_hinges()),
+          [&](int, std::size_t begin, std::size_t end, Vec3* f) {
+            double e_part = 0.0;
+            for (std::size_t k = begin; k < end; ++k) {
+              const int h = static_cast<int>(k);
+              int a, m, b;
+              c->hinge(h, a, m, b);
+              // rest lengths of the two edges at this hinge (§3.1: domain lengths at rest)
+              const int e0i = c->closed ? (h - 1 + ne) % ne : h;
+              const int e1i = c->closed ? h : h + 1;
+              const double l = c->rest_length[e0i] + c->rest_length[e1i];
+              const Vec3 e0 = x[m] - x[a], e1 = x[b] - x[m];
+              const double n0 = e0.norm(), n1 = e1.norm();
+              const double D = n0 * n1 + e0.dot(e1);
+              if (!(D > 1e-12 * n0 * n1)) continue;  // a fully folded hinge has no binormal
+              const Vec3 kb = 2.0 * e0.cross(e1) / D;
+              const double e_hinge = yi_ * kb.squaredNorm() / l;  // (4.4)
+              e_part += e_hinge;
+              if (node_energy_) (*node_energy_)[m] = e_hinge;
+              // exact gradients (§3.3); F_k = -(2 YI / l) (grad_k kb)^T kb. With [e]^T = -[e]:
+              // (grad_{i-1} kb)^T kb = (2 kb x e1 + |kb|^2 (e1 + |e1| t0)) / D and
+              // (grad_{i+1} kb)^T kb = (2 kb x e0 - |kb|^2 (e0 + |e0| t1)) / D
+              const double kb2 = kb.squaredNorm();
+              const double s = 2.0 * yi_ / (l * D);
+              const Vec3 fa = -s * (2.0 * kb.cross(e1) + kb2 * (e1 + (n1 / n0) * e0));
+              const Vec3 fb = -s * (2.0 * kb.cross(e0) - kb2 * (e0 + (n0 / n1) * e1));
+              f[a] += fa;
+              f[b] += fb;
+              f[m] -= fa + fb;
+            }
+            return e_part;
+          });
     }
     return energy;
   }

@@ -18,21 +18,25 @@ class SpringBond : public ChainBondStyle {
   SpringBond(Simulation& sim, const ParamValues& p) : ChainBondStyle(sim, p), k_(p.real("k")) {}
   const char* energy_category() const override { return "stretch"; }
   double compute(Simulation& sim) override {
-    auto& x = sim.nodes().x;
-    auto& f = sim.nodes().f;
+    const auto& x = sim.nodes().x;
     double energy = 0.0;
     for (auto* c : chains(sim)) {
-      const int ne = c->n_edges();
-      for (int e = 0; e < ne; ++e) {
-        const int a = c->edge_tail(e), b = c->edge_head(e);
-        const Vec3 d = x[b] - x[a];
-        const double len = d.norm();
-        const double stretch = len - c->rest_length[e];
-        const Vec3 fa = (k_ * stretch / len) * d;
-        f[a] += fa;
-        f[b] -= fa;
-        energy += 0.5 * k_ * stretch * stretch;
-      }
+      energy += sim.parallel_node_forces(static_cast<std::size_t>(c->n_edges()),
+                                         [&](int, std::size_t begin, std::size_t end, Vec3* f) {
+                                           double e_part = 0.0;
+                                           for (std::size_t k = begin; k < end; ++k) {
+                                             const int e = static_cast<int>(k);
+                                             const int a = c->edge_tail(e), b = c->edge_head(e);
+                                             const Vec3 d = x[b] - x[a];
+                                             const double len = d.norm();
+                                             const double stretch = len - c->rest_length[k];
+                                             const Vec3 fa = (k_ * stretch / len) * d;
+                                             f[a] += fa;
+                                             f[b] -= fa;
+                                             e_part += 0.5 * k_ * stretch * stretch;
+                                           }
+                                           return e_part;
+                                         });
     }
     return energy;
   }

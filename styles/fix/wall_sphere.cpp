@@ -2,6 +2,7 @@
 // (normal repulsion k delta^p, dashpot, stick-slip friction) against a fixed body.
 // Overlap delta = |x - c| + d/2 - R (inside) or R + d/2 - |x - c| (outside). The
 // friction history is a node property, allocated only when mu_static > 0.
+#include <array>
 #include <cmath>
 
 #include "contact_law.hpp"
@@ -74,47 +75,65 @@ class SphereWallFix : public FixStyle {
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
-    double e = 0.0;
-    total_ = 0.0;
-    contacts_ = 0;
     const Property<int>* mask = sim.dof_mask();
     // below this squared distance from the centre a node is clear of the wall by more than
     // a part in 1e-9 of r, so the exact test below would reject it too
     const double clear = (r_ - 0.5 * d_) * (1.0 - 1e-9);
     const double clear2 = clear > 0 ? clear * clear : -1.0;
-    for (int i : nodes_) {
-      // fully kinematic nodes (clamped, or driven in an injection channel) feel
-      // no wall: their forces are discarded and must not enter any measurement
-      if (mask && (*mask)[i] == 7) continue;
-      const Vec3 rel = x[i] - c_;
-      // most nodes of a packing are well inside: skip them before the root
-      if (inside_ && rel.squaredNorm() < clear2) {
-        if (law_.frictional() && (*state_)[i]) (*state_)[i] = 0, (*xi_)[i].setZero();
-        continue;
-      }
-      const double dist = rel.norm();
-      const double delta = inside_ ? dist + 0.5 * d_ - r_ : r_ + 0.5 * d_ - dist;
-      FrictionState st;
-      if (law_.frictional()) {
-        st.xi = (*xi_)[i];
-        st.stick = (*state_)[i] & 1;
-        st.active = (*state_)[i] & 2;
-      }
-      if (delta <= 0.0 || dist == 0.0 || in_opening(rel)) {
-        if (law_.frictional()) (*state_)[i] = 0, (*xi_)[i].setZero();
-        continue;
-      }
-      const Vec3 n = (inside_ ? -1.0 : 1.0) * rel / dist;  // pushes back into the domain
-      double fn = 0.0, e_contact = 0.0;
-      f[i] += law_.force(delta, n, v[i], sim.dt, st, &fn, &e_contact);
-      if (law_.frictional()) {
-        (*xi_)[i] = st.xi;
-        (*state_)[i] = (st.stick ? 1 : 0) | (st.active ? 2 : 0);
-      }
-      stiffness_.add(i, law_.contact_stiffness(delta, st));
-      e += e_contact;
-      total_ += fn;
-      ++contacts_;
+    // each node is one work item and touches only its own force and history
+    struct Part {
+      double e = 0.0, total = 0.0;
+      int contacts = 0;
+    };
+    std::array<Part, kMaxThreads> parts{};
+    stiffness_.prepare(sim.threads());
+    const int T = parallel_ranges(
+        sim.threads(), nodes_.size(), [&](int tid, std::size_t begin, std::size_t end) {
+          Part& part = parts[static_cast<std::size_t>(tid)];
+          NodeStiffness::Part& stiff = stiffness_.part(tid);
+          for (std::size_t k = begin; k < end; ++k) {
+            const int i = nodes_[k];
+            // fully kinematic nodes (clamped, or driven in an injection channel) feel
+            // no wall: their forces are discarded and must not enter any measurement
+            if (mask && (*mask)[i] == 7) continue;
+            const Vec3 rel = x[i] - c_;
+            // most nodes of a packing are well inside: skip them before the root
+            if (inside_ && rel.squaredNorm() < clear2) {
+              if (law_.frictional() && (*state_)[i]) (*state_)[i] = 0, (*xi_)[i].setZero();
+              continue;
+            }
+            const double dist = rel.norm();
+            const double delta = inside_ ? dist + 0.5 * d_ - r_ : r_ + 0.5 * d_ - dist;
+            FrictionState st;
+            if (law_.frictional()) {
+              st.xi = (*xi_)[i];
+              st.stick = (*state_)[i] & 1;
+              st.active = (*state_)[i] & 2;
+            }
+            if (delta <= 0.0 || dist == 0.0 || in_opening(rel)) {
+              if (law_.frictional()) (*state_)[i] = 0, (*xi_)[i].setZero();
+              continue;
+            }
+            const Vec3 n = (inside_ ? -1.0 : 1.0) * rel / dist;  // pushes back into the domain
+            double fn = 0.0, e_contact = 0.0;
+            f[i] += law_.force(delta, n, v[i], sim.dt, st, &fn, &e_contact);
+            if (law_.frictional()) {
+              (*xi_)[i] = st.xi;
+              (*state_)[i] = (st.stick ? 1 : 0) | (st.active ? 2 : 0);
+            }
+            stiff.add(i, law_.contact_stiffness(delta, st));
+            part.e += e_contact;
+            part.total += fn;
+            ++part.contacts;
+          }
+        });
+    double e = 0.0;
+    total_ = 0.0;
+    contacts_ = 0;
+    for (int t = 0; t < T; ++t) {
+      e += parts[static_cast<std::size_t>(t)].e;
+      total_ += parts[static_cast<std::size_t>(t)].total;
+      contacts_ += parts[static_cast<std::size_t>(t)].contacts;
     }
     stiffness_.finish(sim.nodes().mass);
     return e;

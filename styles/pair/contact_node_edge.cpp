@@ -6,6 +6,7 @@
 // force split by the lever rule: node i gets F, the edge nodes -(1-t)F and -tF,
 // so momentum is conserved exactly. Friction history lives in the pair list.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "cell_grid.hpp"
@@ -73,7 +74,6 @@ class NodeEdgeContactPair : public PairStyle {
     if (need_build_ || schedule_.due(sim)) build(sim);
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
-    auto& f = sim.nodes().f;
     const double dt = sim.dt;
     double energy = 0.0;
     contacts_ = 0;
@@ -81,61 +81,80 @@ class NodeEdgeContactPair : public PairStyle {
       e.prev = e.st.active;
       e.st.active = false;
     }
-    for (size_t k = 0; k < list_.size(); ++k) {
-      Entry& c = list_[k];
-      const Edge& ed = edges_[c.edge];
-      const Vec3 seg = x[ed.b] - x[ed.a];
-      const double len2 = seg.squaredNorm();
-      double t = len2 > 0 ? (x[c.node] - x[ed.a]).dot(seg) / len2 : 0.0;
-      t = std::clamp(t, 0.0, 1.0);
-      // a vertex shared by two edges is counted once, through the earlier edge
-      if (t == 0.0 && (ed.index > 0 || chains_[static_cast<size_t>(ed.chain)]->closed)) continue;
-      const Vec3 p = x[ed.a] + t * seg;
-      const Vec3 r = x[c.node] - p;
-      // most listed pairs are apart: skip them before the root and the side test
-      // (d2_apart_ lies a few ulps above d^2, so the exact test below decides the rest)
-      const double r2 = r.squaredNorm();
-      if (r2 > d2_apart_) {
-        release(c);
-        continue;
+    stiffness_.prepare(sim.threads());
+    std::array<int, kMaxThreads> count{};
+    // one work item per listed (node, edge) pair; the list is sorted by node and a new
+    // contact takes the history of its node's other entries (hand_over), so each thread's
+    // range starts at a node's first entry: a node's entries are handled by one thread,
+    // in the serial order
+    const size_t n_list = list_.size();
+    auto node_start = [&](size_t i) {
+      while (i > 0 && i < n_list && list_[i].node == list_[i - 1].node) ++i;
+      return i;
+    };
+    energy = sim.parallel_node_forces(n_list, [&](int tid, size_t begin, size_t end, Vec3* f) {
+      NodeStiffness::Part& stiff = stiffness_.part(tid);
+      double e_part = 0.0;
+      int n_contacts = 0;
+      for (size_t k = node_start(begin), stop = node_start(end); k < stop; ++k) {
+        Entry& c = list_[k];
+        const Edge& ed = edges_[c.edge];
+        const Vec3 seg = x[ed.b] - x[ed.a];
+        const double len2 = seg.squaredNorm();
+        double t = len2 > 0 ? (x[c.node] - x[ed.a]).dot(seg) / len2 : 0.0;
+        t = std::clamp(t, 0.0, 1.0);
+        // a vertex shared by two edges is counted once, through the earlier edge
+        if (t == 0.0 && (ed.index > 0 || chains_[static_cast<size_t>(ed.chain)]->closed)) continue;
+        const Vec3 p = x[ed.a] + t * seg;
+        const Vec3 r = x[c.node] - p;
+        // most listed pairs are apart: skip them before the root and the side test
+        // (d2_apart_ lies a few ulps above d^2, so the exact test below decides the rest)
+        const double r2 = r.squaredNorm();
+        if (r2 > d2_apart_) {
+          release(c);
+          continue;
+        }
+        double dist = std::sqrt(r2);
+        // which side of the edge the node is on; a contact remembers the side it was
+        // made from, so an overloaded node pushed past the centre line is pushed back
+        // (overlap d + distance) instead of being pulled through the wire
+        // Only an interior closest point has a side: around a vertex or a free wire
+        // end the side changes without crossing anything.
+        const double cross = seg.x() * r.y() - seg.y() * r.x();
+        const int side = cross > 0 ? 1 : -1;
+        const bool interior = t > 0.0 && t < 1.0;
+        const bool crossed = interior && c.prev && c.side != 0 && side != c.side && dist < d_;
+        if ((dist >= d_ && !crossed) || dist == 0.0) {
+          release(c);
+          continue;
+        }
+        Vec3 nrm = r / dist;
+        if (crossed) {
+          nrm = -nrm;
+          dist = -dist;
+        } else {
+          c.side = interior ? side : 0;
+        }
+        const Vec3 vrel = v[c.node] - ((1 - t) * v[ed.a] + t * v[ed.b]);
+        c.st.active = c.prev;
+        if (!c.prev) hand_over(k);
+        double e_contact = 0.0;
+        const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, c.st, nullptr, &e_contact);
+        f[c.node] += F;
+        f[ed.a] -= (1 - t) * F;
+        f[ed.b] -= t * F;
+        // Hessian k w w^T with w = (1, -(1-t), -t): row sums 2k, 2(1-t)k, 2tk
+        const double kc = law_.contact_stiffness(d_ - dist, c.st);
+        stiff.add(c.node, 2 * kc);
+        stiff.add(ed.a, 2 * (1 - t) * kc);
+        stiff.add(ed.b, 2 * t * kc);
+        e_part += e_contact;
+        ++n_contacts;
       }
-      double dist = std::sqrt(r2);
-      // which side of the edge the node is on; a contact remembers the side it was
-      // made from, so an overloaded node pushed past the centre line is pushed back
-      // (overlap d + distance) instead of being pulled through the wire
-      // Only an interior closest point has a side: around a vertex or a free wire
-      // end the side changes without crossing anything.
-      const double cross = seg.x() * r.y() - seg.y() * r.x();
-      const int side = cross > 0 ? 1 : -1;
-      const bool interior = t > 0.0 && t < 1.0;
-      const bool crossed = interior && c.prev && c.side != 0 && side != c.side && dist < d_;
-      if ((dist >= d_ && !crossed) || dist == 0.0) {
-        release(c);
-        continue;
-      }
-      Vec3 nrm = r / dist;
-      if (crossed) {
-        nrm = -nrm;
-        dist = -dist;
-      } else {
-        c.side = interior ? side : 0;
-      }
-      const Vec3 vrel = v[c.node] - ((1 - t) * v[ed.a] + t * v[ed.b]);
-      c.st.active = c.prev;
-      if (!c.prev) hand_over(k);
-      double e_contact = 0.0;
-      const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, c.st, nullptr, &e_contact);
-      f[c.node] += F;
-      f[ed.a] -= (1 - t) * F;
-      f[ed.b] -= t * F;
-      // Hessian k w w^T with w = (1, -(1-t), -t): row sums 2k, 2(1-t)k, 2tk
-      const double kc = law_.contact_stiffness(d_ - dist, c.st);
-      stiffness_.add(c.node, 2 * kc);
-      stiffness_.add(ed.a, 2 * (1 - t) * kc);
-      stiffness_.add(ed.b, 2 * t * kc);
-      energy += e_contact;
-      ++contacts_;
-    }
+      count[static_cast<size_t>(tid)] = n_contacts;
+      return e_part;
+    });
+    for (int c : count) contacts_ += c;
     stiffness_.finish(sim.nodes().mass);
     return energy;
   }

@@ -7,6 +7,7 @@
 // E* overlap by default, dashpot, stick-slip friction in the tangent plane), and
 // the lever rule onto the four nodes, so that momentum is conserved exactly.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "cell_grid.hpp"
@@ -90,48 +91,60 @@ class SegmentContactPair : public PairStyle {
   double compute(Simulation& sim) override {
     if (!bound_ || topology_changed()) setup(sim);
     if (need_build_ || schedule_.due(sim)) build(sim);
-    auto& x = sim.nodes().x;
-    auto& v = sim.nodes().v;
-    auto& f = sim.nodes().f;
+    const auto& x = sim.nodes().x;
+    const auto& v = sim.nodes().v;
     const double dt = sim.dt, reach = 2.0 * a_, reach2 = reach * reach;
-    double energy = 0.0;
+    stiffness_.prepare(sim.threads());
+    std::array<int, kMaxThreads> count{};
+    // each listed pair is one work item: its friction history is its own, its forces go
+    // to the thread's buffer (threads.hpp)
+    const double energy = sim.parallel_node_forces(
+        list_.size(), [&](int tid, std::size_t begin, std::size_t end, Vec3* f) {
+          ContactLaw law = law_;
+          NodeStiffness::Part& stiff = stiffness_.part(tid);
+          double energy_part = 0.0;
+          int n_contacts = 0;
+          for (std::size_t k = begin; k < end; ++k) {
+            Entry& c = list_[k];
+            const Edge& e1 = edges_[static_cast<size_t>(c.e1)];
+            const Edge& e2 = edges_[static_cast<size_t>(c.e2)];
+            double s, t;
+            closest_points(x[e1.a], x[e1.b], x[e2.a], x[e2.b], s, t);
+            const Vec3 p1 = x[e1.a] + s * (x[e1.b] - x[e1.a]);
+            const Vec3 p2 = x[e2.a] + t * (x[e2.b] - x[e2.a]);
+            const Vec3 d12 = p1 - p2;
+            // most listed pairs are apart: test the squared distance before taking the root
+            const double dist2 = d12.squaredNorm();
+            if (dist2 >= reach2 || dist2 == 0.0) {
+              c.st.active = false;
+              c.st.stick = false;
+              c.st.xi.setZero();
+              continue;
+            }
+            const double dist = std::sqrt(dist2);
+            const Vec3 n = d12 / dist;
+            const Vec3 vrel = ((1 - s) * v[e1.a] + s * v[e1.b]) - ((1 - t) * v[e2.a] + t * v[e2.b]);
+            if (estar_per_length_ > 0) law.stiffness = estar_per_length_ * (e1.rest + e2.rest);
+            double e_contact = 0.0;
+            const Vec3 F = law.force(reach - dist, n, vrel, dt, c.st, nullptr, &e_contact);
+            f[e1.a] += (1 - s) * F;
+            f[e1.b] += s * F;
+            f[e2.a] -= (1 - t) * F;
+            f[e2.b] -= t * F;
+            // Hessian k w w^T with w = (1-s, s, -(1-t), -t), |w|_1 = 2: row sums 2 k |w_j|
+            const double kc = law.contact_stiffness(reach - dist, c.st);
+            stiff.add(e1.a, 2 * (1 - s) * kc);
+            stiff.add(e1.b, 2 * s * kc);
+            stiff.add(e2.a, 2 * (1 - t) * kc);
+            stiff.add(e2.b, 2 * t * kc);
+            energy_part += e_contact;
+            ++n_contacts;
+          }
+          count[static_cast<std::size_t>(tid)] = n_contacts;
+          return energy_part;
+        });
     contacts_ = 0;
-    ContactLaw law = law_;
-    for (auto& c : list_) {
-      const Edge& e1 = edges_[static_cast<size_t>(c.e1)];
-      const Edge& e2 = edges_[static_cast<size_t>(c.e2)];
-      double s, t;
-      closest_points(x[e1.a], x[e1.b], x[e2.a], x[e2.b], s, t);
-      const Vec3 p1 = x[e1.a] + s * (x[e1.b] - x[e1.a]);
-      const Vec3 p2 = x[e2.a] + t * (x[e2.b] - x[e2.a]);
-      const Vec3 d12 = p1 - p2;
-      // most listed pairs are apart: test the squared distance before taking the root
-      const double dist2 = d12.squaredNorm();
-      if (dist2 >= reach2 || dist2 == 0.0) {
-        c.st.active = false;
-        c.st.stick = false;
-        c.st.xi.setZero();
-        continue;
-      }
-      const double dist = std::sqrt(dist2);
-      const Vec3 n = d12 / dist;
-      const Vec3 vrel = ((1 - s) * v[e1.a] + s * v[e1.b]) - ((1 - t) * v[e2.a] + t * v[e2.b]);
-      if (estar_per_length_ > 0) law.stiffness = estar_per_length_ * (e1.rest + e2.rest);
-      double e_contact = 0.0;
-      const Vec3 F = law.force(reach - dist, n, vrel, dt, c.st, nullptr, &e_contact);
-      f[e1.a] += (1 - s) * F;
-      f[e1.b] += s * F;
-      f[e2.a] -= (1 - t) * F;
-      f[e2.b] -= t * F;
-      // Hessian k w w^T with w = (1-s, s, -(1-t), -t), |w|_1 = 2: row sums 2 k |w_j|
-      const double k = law.contact_stiffness(reach - dist, c.st);
-      stiffness_.add(e1.a, 2 * (1 - s) * k);
-      stiffness_.add(e1.b, 2 * s * k);
-      stiffness_.add(e2.a, 2 * (1 - t) * k);
-      stiffness_.add(e2.b, 2 * t * k);
-      energy += e_contact;
-      ++contacts_;
-    }
+    for (int c : count) contacts_ += c;
     stiffness_.finish(sim.nodes().mass);
     return energy;
   }

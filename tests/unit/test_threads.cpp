@@ -1,0 +1,191 @@
+// Threads (src/threads.hpp): the threaded kernels give the serial forces up to rounding,
+// a run is bit-identical to itself for a thread count, and the per-thread buffers are
+// reduced and cleared (a missed reduction or a stale buffer would change the forces).
+// Covers the threaded paths of contact/segment, contact/node-edge, spring, rod/straight,
+// bend2d, bend2d/hysteresis, wall/sphere and wall/circle, and verlet.
+#include <cmath>
+#include <random>
+
+#include "helpers.hpp"
+#include "threads.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+namespace {
+// A helix of n nodes (spacing ~1) whose turns press on each other (pitch 0.95 against a
+// contact distance 2a = 1), its ends inside a frictional sphere that they touch, with
+// random velocities so that the friction and the dashpots act: thousands of segment
+// contacts, enough work items for every kernel to run on two threads.
+std::unique_ptr<Simulation> packed_helix(int threads, double mu = 0.3, int n = 3000) {
+  auto sim = std::make_unique<Simulation>(3, 7);
+  sim->verbose = false;
+  sim->set_threads(threads);
+  const double r = 10.0, pitch = 0.95;
+  const double turn = 2 * M_PI * r;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2 * M_PI * i / turn;
+    pts.emplace_back(r * std::cos(phi), r * std::sin(phi), pitch * phi / (2 * M_PI));
+  }
+  sim->add_chain("w", pts, 1.0, false);
+  const double zmid = 0.5 * pts.back().z();
+  sim->add_bond("spring", P({{"k", 1000.0}}));
+  sim->add_bond("rod/straight", P({{"YI", 60.0}}));
+  sim->add_pair(
+      "contact/segment",
+      P({{"radius", 0.5}, {"stiffness", 1e3}, {"damping", 5.0}, {"mu_static", mu}, {"skin", 0.3}}));
+  sim->add_fix("wall", "wall/sphere",
+               P({{"center", std::vector<double>{0, 0, zmid}},
+                  {"radius", std::sqrt(r * r + zmid * zmid) + 0.3},
+                  {"diameter", 1.0},
+                  {"stiffness", 500.0},
+                  {"exponent", 1.0},
+                  {"mu_static", mu}}));
+  std::mt19937 g(3);
+  std::normal_distribution<double> u(0.0, 0.05);
+  for (auto& v : sim->nodes().v) v = Vec3(u(g), u(g), u(g));
+  sim->set_integrator("verlet", P({{"dt", 0.005}}));
+  return sim;
+}
+// The 2D counterpart: an Archimedean spiral of n nodes whose turns press on each other
+// (0.95 apart against a contact diameter 1), plastic in its inner turns, its outer turn
+// on a frictional circular wall.
+std::unique_ptr<Simulation> packed_spiral(int threads, int n = 3000) {
+  auto sim = std::make_unique<Simulation>(2, 7);
+  sim->verbose = false;
+  sim->set_threads(threads);
+  const double b = 0.95 / (2 * M_PI);
+  double th = 3.0 / b, rmax = 0.0;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < n; ++i) {
+    const double r = b * th;
+    pts.emplace_back(r * std::cos(th), r * std::sin(th), 0.0);
+    rmax = r;
+    th += 1.0 / std::sqrt(r * r + b * b);
+  }
+  sim->add_chain("w", pts, 1.0, false);
+  sim->add_bond("spring", P({{"k", 1000.0}}));
+  sim->add_bond("bend2d/hysteresis", P({{"k", 60.0}, {"yield_curvature", 0.1}}));
+  sim->add_pair("contact/node-edge", P({{"diameter", 1.0},
+                                        {"stiffness", 1e3},
+                                        {"damping", 5.0},
+                                        {"mu_static", 0.3},
+                                        {"skin", 0.3}}));
+  sim->add_fix("wall", "wall/circle",
+               P({{"radius", rmax + 0.3},
+                  {"diameter", 1.0},
+                  {"stiffness", 500.0},
+                  {"exponent", 1.0},
+                  {"mu_static", 0.3}}));
+  std::mt19937 g(3);
+  std::normal_distribution<double> u(0.0, 0.05);
+  for (auto& v : sim->nodes().v) v = Vec3(u(g), u(g), 0.0);
+  sim->set_integrator("verlet", P({{"dt", 0.005}}));
+  return sim;
+}
+
+// Forces, energies, contact counts and measured stiffness of two scenes agree.
+void expect_same_evaluation(Simulation& one, Simulation& two, const char* pair) {
+  one.compute_forces();
+  two.compute_forces();
+  const auto& f1 = one.nodes().f;
+  const auto& f2 = two.nodes().f;
+  double fmax = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < f1.size(); ++i) {
+    fmax = std::max(fmax, f1[i].cwiseAbs().maxCoeff());
+    worst = std::max(worst, (f1[i] - f2[i]).cwiseAbs().maxCoeff());
+  }
+  ASSERT_GT(fmax, 1.0);
+  EXPECT_LT(worst, 1e-12 * fmax);
+  for (auto& [cat, e] : one.energies())
+    EXPECT_NEAR(two.energies().at(cat), e, 1e-12 * std::max(1.0, std::abs(e))) << cat;
+  EXPECT_GT(one.energies().at("contact"), 0.0);
+  for (const char* id : {pair, "wall"}) {
+    const double c1 = one.find_style(id)->value("contacts");
+    EXPECT_GT(c1, 10) << id;
+    EXPECT_EQ(c1, two.find_style(id)->value("contacts")) << id;
+    const double w1 = one.find_style(id)->value("omega");
+    EXPECT_GT(w1, 0.0) << id;
+    EXPECT_NEAR(two.find_style(id)->value("omega"), w1, 1e-12 * w1) << id;
+  }
+}
+}  // namespace
+
+TEST(Threads, RangesCoverTheWorkOnceInOrder) {
+  for (std::size_t n : {0u, 1u, 7u, 512u, 1001u})
+    for (int T : {1, 2, 3, 8}) {
+      std::size_t next = 0;
+      for (int t = 0; t < T; ++t) {
+        std::size_t b, e;
+        thread_range(n, T, t, b, e);
+        EXPECT_EQ(b, next);
+        EXPECT_LE(b, e);
+        next = e;
+      }
+      EXPECT_EQ(next, n);
+    }
+  // small kernels stay serial; large ones take every thread asked for
+  EXPECT_EQ(threads_for(100, 2), 1);
+  EXPECT_EQ(threads_for(100000, 2), 2);
+  EXPECT_EQ(threads_for(100000, 1000), kMaxThreads);
+}
+
+TEST(Threads, ThreadCountIsValidated) {
+  Simulation sim(3, 1);
+  EXPECT_THROW(sim.set_threads(0), InputError);
+  EXPECT_THROW(sim.set_threads(kMaxThreads + 1), InputError);
+  sim.set_threads(2);
+  EXPECT_EQ(sim.threads(), 2);
+}
+
+TEST(Threads, TwoThreadsGiveTheSerialForcesAndEnergies) {
+  auto one = packed_helix(1), two = packed_helix(2);
+  // twice: the second evaluation finds the buffers of the first cleared
+  for (int pass = 0; pass < 2; ++pass) expect_same_evaluation(*one, *two, "contact/segment");
+}
+
+TEST(Threads, TwoThreadsGiveTheSerialForcesIn2D) {
+  auto one = packed_spiral(1), two = packed_spiral(2);
+  for (int pass = 0; pass < 2; ++pass) expect_same_evaluation(*one, *two, "contact/node-edge");
+  // the inner turns flowed plastically, on both
+  const double lost = one->find_style("bend2d/hysteresis")->value("dissipated");
+  EXPECT_GT(lost, 0.0);
+  EXPECT_NEAR(two->find_style("bend2d/hysteresis")->value("dissipated"), lost, 1e-12 * lost);
+}
+
+TEST(Threads, ARunIsBitIdenticalForTheSameThreadCount) {
+  for (int dim : {3, 2}) {
+    auto a = dim == 3 ? packed_helix(2) : packed_spiral(2);
+    auto b = dim == 3 ? packed_helix(2) : packed_spiral(2);
+    for (auto* sim : {a.get(), b.get()}) sim->run(RunOptions{100, 0, nullptr});
+    for (std::size_t i = 0; i < a->nodes().size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_EQ(a->nodes().x[i][c], b->nodes().x[i][c]) << dim << "D node " << i;
+        ASSERT_EQ(a->nodes().v[i][c], b->nodes().v[i][c]) << dim << "D node " << i;
+      }
+    const char* pair = dim == 3 ? "contact/segment" : "contact/node-edge";
+    EXPECT_GT(a->find_style(pair)->value("contacts"), 10);
+    if (dim == 2) {
+      EXPECT_EQ(a->find_style("bend2d/hysteresis")->value("dissipated"),
+                b->find_style("bend2d/hysteresis")->value("dissipated"));
+    }
+  }
+}
+
+TEST(Threads, ARunOnTwoThreadsFollowsTheSerialOne) {
+  // The threads add forces in another order, so the runs part at rounding level; the
+  // packed helix then amplifies that quickly (nearly parallel segments switch between
+  // the closest-point formulas, stick/slip switches are discontinuous), so compare the
+  // first steps, where the integrator's threaded loops must match the serial ones.
+  auto s = packed_helix(1), t = packed_helix(2);
+  for (auto* sim : {s.get(), t.get()}) sim->run(RunOptions{4, 0, nullptr});
+  double worst = 0.0, moved = 0.0;
+  for (std::size_t i = 0; i < s->nodes().size(); ++i) {
+    worst = std::max(worst, (s->nodes().x[i] - t->nodes().x[i]).norm());
+    worst = std::max(worst, 0.005 * (s->nodes().v[i] - t->nodes().v[i]).norm());
+    moved = std::max(moved, s->nodes().v[i].norm());
+  }
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_GT(moved, 1e-2);
+}

@@ -202,6 +202,7 @@ FixStyle& Simulation::add_fix(const std::string& id, const std::string& style, c
 void Simulation::remove_fix(const std::string& id) {
   for (auto it = fixes_.begin(); it != fixes_.end(); ++it)
     if ((*it)->id() == id) {
+      (*it)->detach(*this);
       fixes_.erase(it);
       forces_valid = false;
       schedule_dirty_ = true;

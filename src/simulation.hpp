@@ -51,6 +51,12 @@ struct ThermoOptions {
 // velocities, generalised forces and scalar masses. A unit set stays on |q| = 1:
 // its forces are projected onto the tangent space and the integrators renormalise
 // q and remove the radial part of its derivatives after every step.
+// Bits of the node property "dof_mask": a set bit holds that position component (its
+// force is zeroed after every evaluation). Clamps set some; kinematically driven nodes
+// (injection channels, shell ghosts and clamped rows) hold all three.
+inline constexpr int kMaskX = 1, kMaskY = 2, kMaskZ = 4;
+inline constexpr int kMaskAll = kMaskX | kMaskY | kMaskZ;
+
 struct Coordinates {
   std::string name;
   Property<Vec4>* q = nullptr;

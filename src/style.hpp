@@ -95,6 +95,9 @@ class FixStyle : public Style {
   static const char* family() { return "fix"; }
   virtual unsigned stages() const = 0;
   virtual void setup(Simulation&) {}
+  // Called by sim:unfix before the fix is destroyed: release what it holds in shared
+  // node data (a clamp's mask bits).
+  virtual void detach(Simulation&) {}
   // Adds forces; returns the potential energy of conservative fixes (else 0).
   virtual double post_force(Simulation&) { return 0.0; }
   virtual void end_of_step(Simulation&) {}

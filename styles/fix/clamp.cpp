@@ -21,11 +21,11 @@ class ClampFix : public FixStyle {
     int bits = 0;
     for (char ch : p.str("components")) {
       if (ch == 'x')
-        bits |= 1;
+        bits |= kMaskX;
       else if (ch == 'y')
-        bits |= 2;
+        bits |= kMaskY;
       else if (ch == 'z')
-        bits |= 4;
+        bits |= kMaskZ;
       else
         throw InputError("fix 'clamp': components must use only x, y, z, got \"" +
                          p.str("components") + "\"");
@@ -51,12 +51,20 @@ class ClampFix : public FixStyle {
   }
   // Clamped components start and stay at rest (kinematically driven nodes of other
   // fixes share the mask but keep their prescribed velocity).
+  // The bits are (re)set here too: a clamp removed by sim:unfix clears its bits, and the
+  // other clamps of the same nodes set theirs again before the next step.
   unsigned stages() const override { return kSetup; }
   void setup(Simulation& sim) override {
     auto& mask = *sim.nodes().find<int>("dof_mask");
-    for (int i : clamped_)
+    for (int i : clamped_) {
+      mask[i] |= bits_;
       for (int c = 0; c < 3; ++c)
         if (mask[i] & (1 << c) & bits_) sim.nodes().v[i][c] = 0.0;
+    }
+  }
+  void detach(Simulation& sim) override {
+    if (auto* mask = sim.nodes().find<int>("dof_mask"))
+      for (int i : clamped_) (*mask)[i] &= ~bits_;
   }
   std::vector<std::string> value_keys() const override { return {"count"}; }
   double value(const std::string& key) const override {

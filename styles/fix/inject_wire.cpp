@@ -351,7 +351,7 @@ class WireInjectionFix : public FixStyle {
     if (dim_ == 2) x.z() = 0.0;
   }
   void drive(Simulation& sim, int i) {
-    (*mask_)[i] = 7;
+    (*mask_)[i] = kMaskAll;
     if (hold_rotation_) {
       held_ = sim.nodes().find<int>("rod.q.fixed");
       if (held_) (*held_)[i] = 1;

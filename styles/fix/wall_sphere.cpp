@@ -95,7 +95,7 @@ class SphereWallFix : public FixStyle {
             const int i = nodes_[k];
             // fully kinematic nodes (clamped, or driven in an injection channel) feel
             // no wall: their forces are discarded and must not enter any measurement
-            if (mask && (*mask)[i] == 7) continue;
+            if (mask && (*mask)[i] == kMaskAll) continue;
             const Vec3 rel = x[i] - c_;
             // most nodes of a packing are well inside: skip them before the root
             if (inside_ && rel.squaredNorm() < clear2) {

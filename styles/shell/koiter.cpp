@@ -277,13 +277,13 @@ class KoiterShell : public ShellStyle {
     for (int i = 0; i < g.mesh.n_nodes(); ++i) m[base_ + i] = lumped[i];
     if (boundary_ == Boundary::kCombined || boundary_ == Boundary::kFreeGhosts) return;
     auto& mask = sim.nodes().require<int>("dof_mask", 0);
-    for (auto& gh : g.ghosts) mask[base_ + gh.node] = 7;
+    for (auto& gh : g.ghosts) mask[base_ + gh.node] = kMaskAll;
     if (boundary_ == Boundary::kSimplySupported || boundary_ == Boundary::kClamped)
-      for (int b : g.boundary) mask[base_ + b] = 7;
+      for (int b : g.boundary) mask[base_ + b] = kMaskAll;
     if (boundary_ == Boundary::kClamped)
-      for (int r : g.first_row) mask[base_ + r] = 7;
+      for (int r : g.first_row) mask[base_ + r] = kMaskAll;
     for (int i = 0; i < g.mesh.n_nodes(); ++i)
-      if (mask[base_ + i] == 7) sim.nodes().v[base_ + i].setZero();
+      if (mask[base_ + i] == kMaskAll) sim.nodes().v[base_ + i].setZero();
   }
 
   void update_growth(Simulation& sim) {
@@ -447,7 +447,7 @@ class KoiterShell : public ShellStyle {
     const int n = g.mesh.n_nodes();
     std::vector<Vec3> x = sim.nodes().x, v(n);
     const Property<int>* mask = sim.nodes().find<int>("dof_mask");
-    auto free = [&](int i) { return !(mask && (*mask)[base_ + i] == 7); };
+    auto free = [&](int i) { return !(mask && (*mask)[base_ + i] == kMaskAll); };
     std::mt19937_64 rng(12345);
     std::uniform_real_distribution<double> uni(-1, 1);
     for (int i = 0; i < n; ++i) v[i] = free(i) ? Vec3(uni(rng), uni(rng), uni(rng)) : Vec3::Zero();

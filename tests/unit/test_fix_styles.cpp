@@ -100,6 +100,32 @@ TEST(ClampFix, ClampedComponentsNeverMove) {
                InputError);
 }
 
+// sim:unfix on a clamp releases its nodes; a second clamp of the same node keeps holding
+// the components it clamps (each clamp sets its own mask bits).
+TEST(ClampFix, UnfixReleasesTheNodesAndKeepsOtherClamps) {
+  Simulation sim(2, 7);
+  sim.verbose = false;
+  sim.add_chain("w", wiggly_chain(6, 2, 3, 0.1), 1.0, false);
+  sim.add_bond("spring", P({{"k", 100.0}}));
+  sim.set_group("first", {0});
+  sim.add_fix("root", "clamp", P({{"group", std::string("first")}}));
+  sim.add_fix("root_y", "clamp",
+              P({{"group", std::string("first")}, {"components", std::string("y")}}));
+  sim.add_fix("load", "force/constant",
+              P({{"group", std::string("all")}, {"force", std::vector<double>{1.0, 1.0}}}));
+  sim.set_integrator("verlet", P({{"dt", 0.01}}));
+  const Vec3 x0 = sim.nodes().x[0];
+  sim.run(RunOptions{100, 0, {}});
+  EXPECT_EQ(sim.nodes().x[0], x0);
+  sim.remove_fix("root");
+  sim.run(RunOptions{100, 0, {}});
+  EXPECT_GT(sim.nodes().x[0].x(), x0.x() + 0.1) << "released in x";
+  EXPECT_EQ(sim.nodes().x[0].y(), x0.y()) << "root_y still holds y";
+  sim.remove_fix("root_y");
+  sim.run(RunOptions{100, 0, {}});
+  EXPECT_GT(sim.nodes().x[0].y(), x0.y() + 0.1) << "released in y";
+}
+
 TEST(ViscousDampingFix, ForceIsMinusGammaV) {
   Simulation sim(3, 1);
   sim.add_chain("w", wiggly_chain(3, 3, 1), 2.0, false);

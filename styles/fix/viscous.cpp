@@ -21,7 +21,10 @@ class ViscousDampingFix : public FixStyle {
   double post_force(Simulation& sim) override {
     auto& f = sim.nodes().f;
     auto& v = sim.nodes().v;
-    for (int i : nodes_) f[i] -= gamma_ * v[i];
+    // each node is its own work item (threads.hpp)
+    parallel_ranges(sim.threads(), nodes_.size(), [&](int, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) f[nodes_[k]] -= gamma_ * v[nodes_[k]];
+    });
     return 0.0;
   }
   // Explicit schemes need gamma dt / m below ~1; report gamma/m as a rate.

@@ -2,7 +2,8 @@
 // a run is bit-identical to itself for a thread count, and the per-thread buffers are
 // reduced and cleared (a missed reduction or a stale buffer would change the forces).
 // Covers the threaded paths of contact/segment, contact/node-edge, spring, rod/straight,
-// bend2d, bend2d/hysteresis, wall/sphere and wall/circle, and verlet.
+// rod/cosserat, bend2d, bend2d/hysteresis, wall/sphere and wall/circle, damping/viscous
+// and verlet.
 #include <cmath>
 #include <random>
 
@@ -152,6 +153,63 @@ TEST(Threads, TwoThreadsGiveTheSerialForcesIn2D) {
   const double lost = one->find_style("bend2d/hysteresis")->value("dissipated");
   EXPECT_GT(lost, 0.0);
   EXPECT_NEAR(two->find_style("bend2d/hysteresis")->value("dissipated"), lost, 1e-12 * lost);
+}
+
+// The Cosserat rod turns frames on both sides of each vertex: on threads the even and
+// the odd vertices go in two passes. Open and closed chains (a ring's closing vertex
+// wraps around), frames perturbed so that every term acts.
+TEST(Threads, CosseratRodGivesTheSerialForcesAndFrameForces) {
+  for (bool closed : {false, true}) {
+    std::unique_ptr<Simulation> sims[2];
+    for (int k = 0; k < 2; ++k) {
+      auto& sim = sims[k];
+      sim = std::make_unique<Simulation>(3, 1);
+      sim->verbose = false;
+      sim->set_threads(k + 1);
+      const int n = 2001;
+      std::vector<Vec3> pts;
+      for (int i = 0; i < n; ++i) {
+        const double phi = 2 * M_PI * i / n;
+        pts.emplace_back(300 * std::cos(phi), 300 * std::sin(phi), 0.1 * std::sin(7 * phi));
+      }
+      sim->add_chain("r", pts, 1.0, closed);
+      sim->add_bond("rod/cosserat", P({{"YI", 2.0},
+                                       {"GJ", 1.5},
+                                       {"coupling", 200.0},
+                                       {"rot_inertia", 0.5},
+                                       {"rest_curvature", std::vector<double>{0, 0.1, 0.02}},
+                                       {"rot_damping", 0.1}}));
+      sim->compute_forces();  // binds the frames
+      auto& q = sim->coordinates("rod.q").q->values();
+      std::mt19937 g(4);
+      std::normal_distribution<double> u(0, 0.1);
+      for (auto& qi : q) qi = (qi + Vec4(u(g), u(g), u(g), u(g))).normalized();
+      for (auto& v : sim->coordinates("rod.q").v->values()) v = Vec4(u(g), u(g), u(g), u(g));
+    }
+    double fmax = 0.0, qmax = 0.0, worst = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      sims[0]->compute_forces();
+      sims[1]->compute_forces();
+      const auto& f0 = sims[0]->nodes().f;
+      const auto& f1 = sims[1]->nodes().f;
+      const auto& g0 = sims[0]->coordinates("rod.q").f->values();
+      const auto& g1 = sims[1]->coordinates("rod.q").f->values();
+      for (size_t i = 0; i < f0.size(); ++i) {
+        fmax = std::max(fmax, f0[i].cwiseAbs().maxCoeff());
+        qmax = std::max(qmax, g0[i].cwiseAbs().maxCoeff());
+        worst = std::max(worst, (f0[i] - f1[i]).cwiseAbs().maxCoeff() / std::max(fmax, 1e-300));
+        worst = std::max(worst, (g0[i] - g1[i]).cwiseAbs().maxCoeff() / std::max(qmax, 1e-300));
+      }
+    }
+    EXPECT_GT(fmax, 1.0);
+    EXPECT_GT(qmax, 1.0);
+    EXPECT_LT(worst, 1e-12) << (closed ? "closed" : "open");
+    for (auto& [cat, e] : sims[0]->energies())
+      EXPECT_NEAR(sims[1]->energies().at(cat), e, 1e-12 * std::max(1.0, std::abs(e))) << cat;
+    EXPECT_GT(sims[0]->energies().at("twist"), 0.0);
+    EXPECT_EQ(sims[0]->bonds()[0]->value("misalignment"),
+              sims[1]->bonds()[0]->value("misalignment"));
+  }
 }
 
 TEST(Threads, ARunIsBitIdenticalForTheSameThreadCount) {

@@ -18,6 +18,7 @@
 #include "nodes.hpp"
 #include "params.hpp"
 #include "style.hpp"
+#include "thermo_writer.hpp"
 #include "threads.hpp"
 #include "topology.hpp"
 
@@ -34,16 +35,6 @@ struct GuardOptions {
   double ke_factor = 100.0;        // kinetic energy may not exceed this times the energy scale
   double max_strain = 0.5;         // an edge beyond (1 +- this) times its rest length has torn
   std::string last_good_file = "slender_last_good.h5";
-};
-
-struct ThermoOptions {
-  long every = 0;         // steps between lines, or
-  double interval = 0.0;  // time between lines
-  std::vector<std::string> columns{"step", "time", "ke", "pe", "etotal"};
-  std::string file;
-  bool append = false;  // continue an existing CSV (a restarted run)
-  bool console = true;
-  double progress_seconds = 5.0;
 };
 
 // Generalised coordinates integrated besides the node positions: four components
@@ -245,12 +236,7 @@ class Simulation {
   std::map<std::string, double> energy_;
   std::vector<std::unique_ptr<Coordinates>> coords_;
   std::vector<std::vector<Vec4>> good_q_, good_qv_;
-  std::ofstream thermo_csv_;
-  bool thermo_header_written_ = false;
-  // step of the last row in the thermo file (when its first column is "step"): a run
-  // continuing where the last one ended, or a restart appending to its file, does not
-  // repeat that row
-  double thermo_last_step_ = -1;
+  ThermoWriter thermo_writer_;
   // guard state
   std::vector<Vec3> good_x_, good_v_;
   long good_step_ = -1;

@@ -1,0 +1,156 @@
+// Simulation: the instability guard (checks after steps, the last good state, the stop).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "registry.hpp"
+#include "simulation.hpp"
+
+namespace slender {
+
+void Simulation::fail(const std::string& what, long bad_step) {
+  std::ostringstream os;
+  os << "instability at step " << bad_step << " (t = " << time << "): " << what << ".";
+  std::string who;
+  double w = omega_max(&who);
+  if (w > 0) {
+    double limit = suggest_dt(1.0);
+    if (dt > limit)
+      os << " The time step dt = " << dt << " is above the stable limit " << limit
+         << " of integrator " << integrator_->style_name() << " (stiffest term: " << who
+         << ", combined omega_max = " << w << "); rerun with dt <= " << suggest_dt(0.5)
+         << " or dt = \"auto\".";
+    else
+      os << " dt = " << dt << " is below the stable limit " << limit << " of the stiff terms ("
+         << who
+         << "), so look at contact overlaps, loads or nodes out of place; a smaller dt (e.g. "
+         << dt * 0.5 << ") may still help.";
+  }
+  // Return to the last good state and dump it, so nothing is lost and the user can
+  // inspect it or continue with a smaller dt. Forces and history arrays (e.g. Gear
+  // derivatives) of the bad steps are not part of it: they are reset, never written
+  // as NaN.
+  if (good_step_ >= 0) {
+    nodes_.x = good_x_;
+    nodes_.v = good_v_;
+    for (size_t k = 0; k < coords_.size() && k < good_q_.size(); ++k) {
+      coords_[k]->q->values() = good_q_[k];
+      coords_[k]->v->values() = good_qv_[k];
+    }
+    step = good_step_;
+    time = good_time_;
+    for (auto& f : nodes_.f) f.setZero();
+    forces_valid = false;
+    ++state_epoch;
+    for (auto& [name, p] : nodes_.properties()) {
+      auto flat = p->to_flat();
+      bool dirty = false;
+      for (double& v : flat)
+        if (!std::isfinite(v)) {
+          v = 0.0;
+          dirty = true;
+        }
+      if (dirty) p->from_flat(flat);
+    }
+    for (auto& [k, e] : energy_)
+      if (!std::isfinite(e)) e = 0.0;
+    try {
+      write_checkpoint(guard.last_good_file);
+      os << " Last good state (step " << good_step_ << ") written to " << guard.last_good_file
+         << ".";
+    } catch (const std::exception& e) {
+      os << " (could not write the last good state: " << e.what() << ")";
+    }
+    for (auto& d : dumps_) d->flush();
+  }
+  throw InstabilityError(os.str());
+}
+
+// The state a failed run returns to. Copy-assignment into the kept vectors reuses their
+// memory (the guard runs every few steps; the quaternion snapshots were reallocated each
+// time).
+void Simulation::save_good_state() {
+  good_x_ = nodes_.x;
+  good_v_ = nodes_.v;
+  good_q_.resize(coords_.size());
+  good_qv_.resize(coords_.size());
+  for (size_t k = 0; k < coords_.size(); ++k) {
+    good_q_[k] = coords_[k]->q->values();
+    good_qv_[k] = coords_[k]->v->values();
+  }
+}
+
+void Simulation::check_guard(long) {
+  const size_t n = nodes_.n_owned();
+  for (size_t i = 0; i < n; ++i) {
+    if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite())
+      fail("non-finite position or velocity of node " + std::to_string(i + 1), step);
+    if (!nodes_.f[i].allFinite()) fail("non-finite force on node " + std::to_string(i + 1), step);
+  }
+  double lmin = topo_.min_rest_length();
+  if (lmin < 1e299) {
+    double vmax = 0.0;
+    size_t imax = 0;
+    for (size_t i = 0; i < n; ++i) {
+      double s = nodes_.v[i].norm();
+      if (s > vmax) {
+        vmax = s;
+        imax = i;
+      }
+    }
+    if (vmax * dt > guard.max_step_fraction * lmin) {
+      // advise from the last good state's speed when this one has already blown up
+      double vgood = 0.0;
+      for (const Vec3& vg : good_v_) vgood = std::max(vgood, vg.norm());
+      const double vref = good_step_ >= 0 && vmax > 10 * vgood && vgood > 0 ? vgood : vmax;
+      std::ostringstream os;
+      os << "node " << imax + 1 << " moves " << vmax * dt << " per step (speed " << vmax
+         << "), more than " << guard.max_step_fraction << " of the shortest rest length " << lmin;
+      // above the stable step the speed is a symptom: fail() names the stable dt instead
+      const double limit = suggest_dt(1.0);
+      if (!(limit > 0) || dt <= limit)
+        os << ", so contacts can be missed; at "
+           << (vref < vmax ? "the last good state's " : "this ")
+           << "speed dt <= " << 0.5 * guard.max_step_fraction * lmin / vref
+           << " keeps it to half of that (or slow the driving down)";
+      fail(os.str(), step);
+    }
+  }
+  // a wire torn apart or crushed: far beyond any elastic strain the styles model
+  for (auto& c : topo_.chains)
+    for (int e = 0; e < c.n_edges(); ++e) {
+      const double ratio =
+          (nodes_.x[c.edge_head(e)] - nodes_.x[c.edge_tail(e)]).norm() / c.rest_length[e];
+      if (std::abs(ratio - 1.0) > guard.max_strain) {
+        std::ostringstream os;
+        os << "edge " << e + 1 << " of chain '" << c.name << "' (nodes " << c.edge_tail(e) + 1
+           << "-" << c.edge_head(e) + 1 << ") is at " << ratio
+           << " times its rest length (guard max_strain " << guard.max_strain << ")";
+        fail(os.str(), step);
+      }
+    }
+  double ke = kinetic_energy(), pe = std::abs(potential_energy());
+  if (ke > guard.ke_factor * std::max(energy_scale_, pe) && ke > 1e-200) {
+    std::ostringstream os;
+    os << "runaway kinetic energy " << ke << " (more than " << guard.ke_factor
+       << " times the largest energy seen so far, " << std::max(energy_scale_, pe) << ")";
+    fail(os.str(), step);
+  }
+  bool any_bounds = false;
+  for (auto& [id, r] : regions_) any_bounds = any_bounds || r->bounds();
+  if (any_bounds) {
+    for (size_t i = 0; i < n; ++i) {
+      bool inside = false;
+      for (auto& [id, r] : regions_)
+        if (r->bounds() && r->contains(nodes_.x[i])) inside = true;
+      if (!inside) fail("node " + std::to_string(i + 1) + " left every bounding region", step);
+    }
+  }
+  energy_scale_ = std::max(energy_scale_, ke + pe);
+  save_good_state();
+  good_step_ = step;
+  good_time_ = time;
+}
+
+}  // namespace slender

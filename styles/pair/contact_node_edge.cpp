@@ -77,10 +77,6 @@ class NodeEdgeContactPair : public PairStyle {
     const double dt = sim.dt;
     double energy = 0.0;
     contacts_ = 0;
-    for (auto& e : list_) {
-      e.prev = e.st.active;
-      e.st.active = false;
-    }
     stiffness_.prepare(sim.threads());
     std::array<int, kMaxThreads> count{};
     // one work item per listed (node, edge) pair; the list is sorted by node and a new
@@ -98,6 +94,10 @@ class NodeEdgeContactPair : public PairStyle {
       int n_contacts = 0;
       for (size_t k = node_start(begin), stop = node_start(end); k < stop; ++k) {
         Entry& c = list_[k];
+        // the state of the last evaluation, read before this one overwrites it (an entry
+        // not yet reached keeps it in st.active: see hand_over)
+        c.prev = c.st.active;
+        c.st.active = false;
         const Edge& ed = edges_[c.edge];
         const Vec3 seg = x[ed.b] - x[ed.a];
         const double len2 = seg.squaredNorm();
@@ -302,16 +302,19 @@ class NodeEdgeContactPair : public PairStyle {
 
   // A new contact whose node was touching the neighbouring edge of the same chain
   // at the last evaluation takes over that contact's stick state (MODELS.md §2.3).
+  // Whether another entry was touching then: `prev` for the entries this evaluation has
+  // reached (before k), `st.active` still for those it has not (after k).
   void hand_over(size_t k) {
     Entry& c = list_[k];
     const Edge& ed = edges_[static_cast<size_t>(c.edge)];
-    for (size_t j = k; j-- > 0 && list_[j].node == c.node;) try_take(c, ed, list_[j]);
+    for (size_t j = k; j-- > 0 && list_[j].node == c.node;)
+      try_take(c, ed, list_[j], list_[j].prev);
     for (size_t j = k + 1; j < list_.size() && list_[j].node == c.node; ++j)
-      try_take(c, ed, list_[j]);
+      try_take(c, ed, list_[j], list_[j].st.active);
   }
-  void try_take(Entry& c, const Edge& ed, const Entry& other) const {
+  void try_take(Entry& c, const Edge& ed, const Entry& other, bool other_was_active) const {
     const Edge& eo = edges_[static_cast<size_t>(other.edge)];
-    if (!other.prev || eo.chain != ed.chain || std::abs(eo.index - ed.index) != 1) return;
+    if (!other_was_active || eo.chain != ed.chain || std::abs(eo.index - ed.index) != 1) return;
     c.st.xi = other.st.xi;
     c.st.stick = other.st.stick;
     c.st.active = true;

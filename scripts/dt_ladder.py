@@ -44,10 +44,10 @@ def parse_result(stdout):
     return row
 
 
-def run_deck(slender, deck_path, variables):
-    """Runs a deck with output=false and the `-v` variables in a scratch folder; returns its
-    RESULT fields with status ok/failed (and the last error line)."""
-    args = [slender, "-q", deck_path, "-v", "output=false"]
+def run_deck(slender, deck_path, variables, threads=1):
+    """Runs a deck with output=false, the `-v` variables and `threads` threads in a scratch
+    folder; returns its RESULT fields with status ok/failed (and the last error line)."""
+    args = [slender, "-q", "-t", str(threads), deck_path, "-v", "output=false"]
     for v in variables:
         args += ["-v", v]
     with tempfile.TemporaryDirectory() as tmp:

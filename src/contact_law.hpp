@@ -28,7 +28,9 @@ class NodeStiffness {
  public:
   // The row sums one thread adds (a kernel on T threads adds into part(tid); prepare(T)
   // first, outside the parallel region).
-  class Part {
+  // Each part on its own cache lines: two threads pushing to neighbouring parts' lists
+  // would otherwise write the same line at every contact (false sharing).
+  class alignas(64) Part {
    public:
     void add(int i, double k) {
       const auto u = static_cast<std::size_t>(i);

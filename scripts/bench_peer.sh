@@ -57,7 +57,7 @@ for N in "${sizes[@]}"; do
   fi
   one=""
   for t in $threads; do
-    out=$(cd "$work" && "$slender" -t "$t" -q "$root/scripts/bench_wire${dim}d.lua" -v data="$data" \
+    out=$(cd "$work" && "$slender" -t "$t" -q "$root/scripts/bench_wire.lua" -v dim="$dim" -v data="$data" \
             -v R="$R" -v nwarm="$nwarm" -v nrun="$nrun" | grep '^RESULT')
     st=$(echo "$out" | tr ' ' '\n' | sed -n 's/^loop_s=//p')
     sr=$(echo "$out" | tr ' ' '\n' | sed -n 's/^node_steps_per_s=//p')

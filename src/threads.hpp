@@ -128,4 +128,28 @@ int parallel_ranges(int threads, std::size_t n, Body&& body) {
   return T;
 }
 
+// Builds a list on up to `threads` threads: body(begin, end, out) appends what the work
+// items [begin, end) contribute to `out`, in order; the threads' lists are joined in thread
+// order, so `list` (appended to) is the one a serial loop gives. `parts` keeps the
+// per-thread lists' memory from one call to the next.
+template <class Item, class Body>
+void parallel_list(int threads, std::size_t n, std::vector<Item>& list,
+                   std::vector<std::vector<Item>>& parts, Body&& body) {
+  const int T = threads_for(n, threads);
+  if (T <= 1) {
+    body(std::size_t{0}, n, list);
+    return;
+  }
+  if (parts.size() < static_cast<std::size_t>(T)) parts.resize(static_cast<std::size_t>(T));
+  parallel_ranges(T, n, [&](int tid, std::size_t begin, std::size_t end) {
+    auto& out = parts[static_cast<std::size_t>(tid)];
+    out.clear();
+    body(begin, end, out);
+  });
+  for (int t = 0; t < T; ++t) {
+    const auto& part = parts[static_cast<std::size_t>(t)];
+    list.insert(list.end(), part.begin(), part.end());
+  }
+}
+
 }  // namespace slender

@@ -269,38 +269,31 @@ class NodeEdgeContactPair : public PairStyle {
     const double cut2 = cutoff * cutoff;
     // the nodes are cut into one range per thread, each thread lists its nodes' pairs in
     // the serial order, and the lists are joined in thread order: the same list as serial
-    const int T = threads_for(chain_of_.size(), sim.threads());
-    if (part_lists_.size() < static_cast<size_t>(T)) part_lists_.resize(static_cast<size_t>(T));
-    parallel_ranges(T, chain_of_.size(), [&](int tid, size_t begin, size_t end) {
-      auto& out = T == 1 ? list_ : part_lists_[static_cast<size_t>(tid)];
-      out.clear();
-      for (size_t i = begin; i < end; ++i) {
-        if (chain_of_[i] < 0) continue;
-        const int node = static_cast<int>(i);
-        const size_t first = out.size();
-        grid_.for_each_near(x[i], [&](int eid) {
-          const Edge& e = edges_[static_cast<size_t>(eid)];
-          if (excluded(node, e)) return;
-          const Vec3 seg = x[e.b] - x[e.a];
-          const double len2 = seg.squaredNorm();
-          const double t = len2 > 0 ? std::clamp((x[i] - x[e.a]).dot(seg) / len2, 0.0, 1.0) : 0.0;
-          if ((x[i] - x[e.a] - t * seg).squaredNorm() < cut2) {
-            Entry en;
-            en.node = node;
-            en.edge = eid;
-            en.tail = e.a;
-            out.push_back(en);
-          }
-        });
-        std::sort(out.begin() + static_cast<long>(first), out.end(),
-                  [](const Entry& a, const Entry& b) { return a.edge < b.edge; });
-      }
-    });
-    if (T > 1)
-      for (int t = 0; t < T; ++t) {
-        auto& part = part_lists_[static_cast<size_t>(t)];
-        list_.insert(list_.end(), part.begin(), part.end());
-      }
+    parallel_list(sim.threads(), chain_of_.size(), list_, part_lists_,
+                  [&](size_t begin, size_t end, std::vector<Entry>& out) {
+                    for (size_t i = begin; i < end; ++i) {
+                      if (chain_of_[i] < 0) continue;
+                      const int node = static_cast<int>(i);
+                      const size_t first = out.size();
+                      grid_.for_each_near(x[i], [&](int eid) {
+                        const Edge& e = edges_[static_cast<size_t>(eid)];
+                        if (excluded(node, e)) return;
+                        const Vec3 seg = x[e.b] - x[e.a];
+                        const double len2 = seg.squaredNorm();
+                        const double t =
+                            len2 > 0 ? std::clamp((x[i] - x[e.a]).dot(seg) / len2, 0.0, 1.0) : 0.0;
+                        if ((x[i] - x[e.a] - t * seg).squaredNorm() < cut2) {
+                          Entry en;
+                          en.node = node;
+                          en.edge = eid;
+                          en.tail = e.a;
+                          out.push_back(en);
+                        }
+                      });
+                      std::sort(out.begin() + static_cast<long>(first), out.end(),
+                                [](const Entry& a, const Entry& b) { return a.edge < b.edge; });
+                    }
+                  });
     // carry the history of pairs that stay listed, matched by (node, edge tail node)
     carry_pair_history(
         old_, list_, [](const Entry& e) { return node_pair_key(e.node, e.tail); },

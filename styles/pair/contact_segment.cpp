@@ -247,39 +247,32 @@ class SegmentContactPair : public PairStyle {
     const double cut2 = cutoff * cutoff;
     // the edges are cut into one range per thread, each thread lists its edges' pairs in
     // the serial order, and the lists are joined in thread order: the same list as serial
-    const int T = threads_for(edges_.size(), sim.threads());
-    if (part_lists_.size() < static_cast<size_t>(T)) part_lists_.resize(static_cast<size_t>(T));
-    parallel_ranges(T, edges_.size(), [&](int tid, size_t begin, size_t end) {
-      auto& out = T == 1 ? list_ : part_lists_[static_cast<size_t>(tid)];
-      out.clear();
-      for (size_t k = begin; k < end; ++k) {
-        const Edge& e = edges_[k];
-        const size_t first = out.size();
-        grid_.for_each_near(mid_[k], [&](int j) {
-          if (static_cast<size_t>(j) <= k) return;  // each pair once
-          const Edge& o = edges_[static_cast<size_t>(j)];
-          if (excluded(e, o)) return;
-          double s, t;
-          closest_points(x[e.a], x[e.b], x[o.a], x[o.b], s, t);
-          const Vec3 d = (x[e.a] + s * (x[e.b] - x[e.a])) - (x[o.a] + t * (x[o.b] - x[o.a]));
-          if (d.squaredNorm() < cut2) {
-            Entry en;
-            en.e1 = static_cast<int>(k);
-            en.e2 = j;
-            en.t1 = e.a;
-            en.t2 = o.a;
-            out.push_back(en);
-          }
-        });
-        std::sort(out.begin() + static_cast<long>(first), out.end(),
-                  [](const Entry& a, const Entry& b) { return a.e2 < b.e2; });
-      }
-    });
-    if (T > 1)
-      for (int t = 0; t < T; ++t) {
-        auto& part = part_lists_[static_cast<size_t>(t)];
-        list_.insert(list_.end(), part.begin(), part.end());
-      }
+    parallel_list(sim.threads(), edges_.size(), list_, part_lists_,
+                  [&](size_t begin, size_t end, std::vector<Entry>& out) {
+                    for (size_t k = begin; k < end; ++k) {
+                      const Edge& e = edges_[k];
+                      const size_t first = out.size();
+                      grid_.for_each_near(mid_[k], [&](int j) {
+                        if (static_cast<size_t>(j) <= k) return;  // each pair once
+                        const Edge& o = edges_[static_cast<size_t>(j)];
+                        if (excluded(e, o)) return;
+                        double s, t;
+                        closest_points(x[e.a], x[e.b], x[o.a], x[o.b], s, t);
+                        const Vec3 d =
+                            (x[e.a] + s * (x[e.b] - x[e.a])) - (x[o.a] + t * (x[o.b] - x[o.a]));
+                        if (d.squaredNorm() < cut2) {
+                          Entry en;
+                          en.e1 = static_cast<int>(k);
+                          en.e2 = j;
+                          en.t1 = e.a;
+                          en.t2 = o.a;
+                          out.push_back(en);
+                        }
+                      });
+                      std::sort(out.begin() + static_cast<long>(first), out.end(),
+                                [](const Entry& a, const Entry& b) { return a.e2 < b.e2; });
+                    }
+                  });
     // carry the friction history of pairs that stay listed, matched by the edges' tail
     // nodes (a chain fed at its front renumbers its edges)
     carry_pair_history(

@@ -311,7 +311,8 @@ int deck_threads(const DeckOptions& opt) {
   if (const char* env = std::getenv("OMP_NUM_THREADS")) {
     char* end = nullptr;
     const long n = std::strtol(env, &end, 10);
-    if (end != env && *end == '\0' && n >= 1) return static_cast<int>(std::min(n, 64L));
+    if (end != env && *end == '\0' && n >= 1)
+      return static_cast<int>(std::min<long>(n, kMaxThreads));
   }
   return 1;
 }

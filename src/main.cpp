@@ -6,6 +6,7 @@
 
 #include "lua_binding.hpp"
 #include "registry.hpp"
+#include "threads.hpp"
 
 namespace {
 
@@ -161,8 +162,8 @@ int main(int argc, char** argv) {
     } else if (a == "-t") {
       char* end = nullptr;
       const long n = i + 1 < argc ? std::strtol(argv[i + 1], &end, 10) : 0;
-      if (i + 1 >= argc || *end != '\0' || n < 1 || n > 64) {
-        std::fprintf(stderr, "slender: -t needs a thread count in [1, 64]\n");
+      if (i + 1 >= argc || *end != '\0' || n < 1 || n > slender::kMaxThreads) {
+        std::fprintf(stderr, "slender: -t needs a thread count in [1, %d]\n", slender::kMaxThreads);
         return 2;
       }
       opt.threads = static_cast<int>(n);

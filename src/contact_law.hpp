@@ -32,44 +32,39 @@ class NodeStiffness {
   // would otherwise write the same line at every contact (false sharing).
   class alignas(64) Part {
    public:
-    void add(int i, double k) {
-      const auto u = static_cast<std::size_t>(i);
-      if (u >= k_.size()) k_.resize(u + 1, 0.0);
-      if (k_[u] == 0.0) touched_.push_back(i);
-      k_[u] += k;
-    }
+    // No branch on the hot path: prepare() sized the row sums to every node. (A list of
+    // the touched nodes cost a mispredicted branch per contact.)
+    void add(int i, double k) { k_[static_cast<std::size_t>(i)] += k; }
 
    private:
     friend class NodeStiffness;
     std::vector<double> k_;
-    std::vector<int> touched_;
   };
-  void prepare(int threads) {
-    if (parts_.size() < static_cast<std::size_t>(threads))
-      parts_.resize(static_cast<std::size_t>(threads));
+  // Before an evaluation on `threads` threads over `n` nodes (outside the parallel region).
+  void prepare(int threads, std::size_t n) {
+    used_ = static_cast<std::size_t>(std::max(threads, 1));
+    if (parts_.size() < used_) parts_.resize(used_);
+    for (std::size_t t = 0; t < used_; ++t)
+      if (parts_[t].k_.size() != n) parts_[t].k_.assign(n, 0.0);
   }
   Part& part(int tid) { return parts_[static_cast<std::size_t>(tid)]; }
   void add(int i, double k) { parts_[0].add(i, k); }
   // Closes one evaluation: the measured omega, and the row sums cleared for the next.
   // The threads' row sums are added in thread order (deterministic for a thread count).
   void finish(const std::vector<double>& mass) {
-    Part& p0 = parts_[0];
-    for (std::size_t t = 1; t < parts_.size(); ++t) {
-      Part& p = parts_[t];
-      for (int i : p.touched_) {
-        const auto u = static_cast<std::size_t>(i);
-        p0.add(i, p.k_[u]);
-        p.k_[u] = 0.0;
+    std::vector<double>& k0 = parts_[0].k_;
+    for (std::size_t t = 1; t < used_; ++t) {
+      std::vector<double>& kt = parts_[t].k_;
+      for (std::size_t u = 0; u < kt.size(); ++u) {
+        k0[u] += kt[u];
+        kt[u] = 0.0;
       }
-      p.touched_.clear();
     }
     double w2 = 0.0;
-    for (int i : p0.touched_) {
-      const auto u = static_cast<std::size_t>(i);
-      w2 = std::max(w2, p0.k_[u] / mass[u]);
-      p0.k_[u] = 0.0;
+    for (std::size_t u = 0; u < k0.size(); ++u) {
+      if (k0[u] != 0.0) w2 = std::max(w2, k0[u] / mass[u]);
+      k0[u] = 0.0;
     }
-    p0.touched_.clear();
     omega_ = std::sqrt(w2);
   }
   double omega() const { return omega_; }
@@ -77,6 +72,7 @@ class NodeStiffness {
 
  private:
   std::vector<Part> parts_ = std::vector<Part>(1);
+  std::size_t used_ = 1;
   double omega_ = 0.0;
 };
 

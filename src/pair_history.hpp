@@ -20,18 +20,30 @@ inline std::uint64_t node_pair_key(int a, int b, bool symmetric = false) {
          static_cast<std::uint32_t>(b);
 }
 
-// For every entry of `now` whose key(entry) matches an entry of `old` that has
-// history (has(entry)), copy(old entry, new entry). Only entries with history go
-// into the lookup, so a rebuild costs little more than before.
+// For every index k of a new list (size n_now) whose key_now(k) matches an index of
+// the old list (size n_old) that has history (has_old(k)), copy(old index, new index).
+// Only entries with history go into the lookup, so a rebuild costs little more than
+// before. For lists whose history lives beside the entries (structure of arrays).
+template <class KeyOld, class KeyNow, class Has, class Copy>
+void carry_pair_history_indexed(std::size_t n_old, std::size_t n_now, KeyOld key_old,
+                                KeyNow key_now, Has has_old, Copy copy) {
+  std::unordered_map<std::uint64_t, std::size_t> index;
+  for (std::size_t k = 0; k < n_old; ++k)
+    if (has_old(k)) index.emplace(key_old(k), k);
+  if (index.empty()) return;
+  for (std::size_t k = 0; k < n_now; ++k)
+    if (auto it = index.find(key_now(k)); it != index.end()) copy(it->second, k);
+}
+
+// The same for lists of entries that hold their history: for every entry of `now`
+// whose key(entry) matches an entry of `old` with history, copy(old entry, new entry).
 template <class Entry, class Key, class Has, class Copy>
 void carry_pair_history(const std::vector<Entry>& old, std::vector<Entry>& now, Key key, Has has,
                         Copy copy) {
-  std::unordered_map<std::uint64_t, std::size_t> index;
-  for (std::size_t k = 0; k < old.size(); ++k)
-    if (has(old[k])) index.emplace(key(old[k]), k);
-  if (index.empty()) return;
-  for (auto& e : now)
-    if (auto it = index.find(key(e)); it != index.end()) copy(old[it->second], e);
+  carry_pair_history_indexed(
+      old.size(), now.size(), [&](std::size_t k) { return key(old[k]); },
+      [&](std::size_t k) { return key(now[k]); }, [&](std::size_t k) { return has(old[k]); },
+      [&](std::size_t from, std::size_t to) { copy(old[from], now[to]); });
 }
 
 }  // namespace slender

@@ -86,7 +86,7 @@ class SphereWallFix : public FixStyle {
       int contacts = 0;
     };
     std::array<Part, kMaxThreads> parts{};
-    stiffness_.prepare(sim.threads());
+    stiffness_.prepare(sim.threads(), sim.nodes().size());
     const int T = parallel_ranges(
         sim.threads(), nodes_.size(), [&](int tid, std::size_t begin, std::size_t end) {
           Part& part = parts[static_cast<std::size_t>(tid)];

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "cell_grid.hpp"
 #include "chain_select.hpp"
@@ -58,7 +59,8 @@ class NodeEdgeContactPair : public PairStyle {
         pos_in_chain_[ch.nodes[k]] = k;
       }
       for (int e = 0; e < ch.n_edges(); ++e)
-        edges_.push_back(Edge{ch.edge_tail(e), ch.edge_head(e), static_cast<int>(c), e});
+        edges_.push_back(
+            Edge{ch.edge_tail(e), ch.edge_head(e), static_cast<int>(c), e, e > 0 || ch.closed});
     }
     // a list read from a checkpoint knows its edges by number, in the numbering of now
     if (tails_from_ids_)
@@ -77,7 +79,7 @@ class NodeEdgeContactPair : public PairStyle {
     const double dt = sim.dt;
     double energy = 0.0;
     contacts_ = 0;
-    stiffness_.prepare(sim.threads());
+    stiffness_.prepare(sim.threads(), sim.nodes().size());
     std::array<int, kMaxThreads> count{};
     // one work item per listed (node, edge) pair; the list is sorted by node and a new
     // contact takes the history of its node's other entries (hand_over), so each thread's
@@ -92,26 +94,48 @@ class NodeEdgeContactPair : public PairStyle {
       NodeStiffness::Part& stiff = stiffness_.part(tid);
       double e_part = 0.0;
       int n_contacts = 0;
-      for (size_t k = node_start(begin), stop = node_start(end); k < stop; ++k) {
+      const size_t k0 = node_start(begin), k1 = node_start(end);
+      // Pass 1, over every listed pair, without data-dependent branches (most pairs are
+      // apart, and a mispredicted branch per pair cost more than the arithmetic): the
+      // last evaluation's state moves to kPrev, and the pairs that may touch, or that
+      // have a contact to release, are noted for pass 2. In 2D the z components are 0.
+      std::vector<Near>& todo = todo_[static_cast<size_t>(tid)];
+      todo.resize(k1 - k0);
+      size_t n_todo = 0;
+      for (size_t k = k0; k < k1; ++k) {
         Entry& c = list_[k];
-        // the state of the last evaluation, read before this one overwrites it (an entry
-        // not yet reached keeps it in st.active: see hand_over)
-        c.prev = c.st.active;
-        c.st.active = false;
+        const bool active = c.flags & kActive;
+        c.flags = static_cast<std::uint8_t>((c.flags & kStick) | (active ? kPrev : 0));
         const Edge& ed = edges_[c.edge];
-        const Vec3 seg = x[ed.b] - x[ed.a];
-        const double len2 = seg.squaredNorm();
-        double t = len2 > 0 ? (x[c.node] - x[ed.a]).dot(seg) / len2 : 0.0;
-        t = std::clamp(t, 0.0, 1.0);
-        // a vertex shared by two edges is counted once, through the earlier edge
-        if (t == 0.0 && (ed.index > 0 || chains_[static_cast<size_t>(ed.chain)]->closed)) continue;
-        const Vec3 p = x[ed.a] + t * seg;
-        const Vec3 r = x[c.node] - p;
-        // most listed pairs are apart: skip them before the root and the side test
+        const Vec3& xa = x[ed.a];
+        const Vec3& xb = x[ed.b];
+        const Vec3& xn = x[c.node];
+        const double sx = xb.x() - xa.x(), sy = xb.y() - xa.y();
+        const double dx = xn.x() - xa.x(), dy = xn.y() - xa.y();
+        const double len2 = sx * sx + sy * sy;
+        const double tr = (dx * sx + dy * sy) / (len2 > 0 ? len2 : 1.0);
+        const double t = std::min(std::max(len2 > 0 ? tr : 0.0, 0.0), 1.0);
+        const double rx = xn.x() - (xa.x() + t * sx), ry = xn.y() - (xa.y() + t * sy);
+        const bool shared_vertex = t == 0.0 && ed.skip_at_tail;
+        const bool near = rx * rx + ry * ry <= d2_apart_;
+        const bool holds = active | ((c.flags & kStick) != 0) | (c.side != 0);
+        todo[n_todo] = Near{k, t, sx, sy, rx, ry};
+        n_todo += static_cast<size_t>((!shared_vertex) & (near | holds));
+      }
+      // Pass 2, in list order: the contacts, and the releases.
+      for (size_t q = 0; q < n_todo; ++q) {
+        const Near& g = todo[q];
+        const size_t k = g.k;
+        Entry& c = list_[k];
+        const bool prev = c.flags & kPrev;
+        const Edge& ed = edges_[c.edge];
+        const double t = g.t;
+        const Vec3 seg(g.sx, g.sy, 0.0);
+        const Vec3 r(g.rx, g.ry, 0.0);
         // (d2_apart_ lies a few ulps above d^2, so the exact test below decides the rest)
-        const double r2 = r.squaredNorm();
+        const double r2 = g.rx * g.rx + g.ry * g.ry;
         if (r2 > d2_apart_) {
-          release(c);
+          release(k, prev);
           continue;
         }
         double dist = std::sqrt(r2);
@@ -123,9 +147,9 @@ class NodeEdgeContactPair : public PairStyle {
         const double cross = seg.x() * r.y() - seg.y() * r.x();
         const int side = cross > 0 ? 1 : -1;
         const bool interior = t > 0.0 && t < 1.0;
-        const bool crossed = interior && c.prev && c.side != 0 && side != c.side && dist < d_;
+        const bool crossed = interior && prev && c.side != 0 && side != c.side && dist < d_;
         if ((dist >= d_ && !crossed) || dist == 0.0) {
-          release(c);
+          release(k, prev);
           continue;
         }
         Vec3 nrm = r / dist;
@@ -133,18 +157,24 @@ class NodeEdgeContactPair : public PairStyle {
           nrm = -nrm;
           dist = -dist;
         } else {
-          c.side = interior ? side : 0;
+          c.side = static_cast<std::int8_t>(interior ? side : 0);
         }
         const Vec3 vrel = v[c.node] - ((1 - t) * v[ed.a] + t * v[ed.b]);
-        c.st.active = c.prev;
-        if (!c.prev) hand_over(k);
+        FrictionState st;
+        st.xi = xi_[k];
+        st.stick = c.flags & kStick;
+        st.active = prev;
+        if (!prev) hand_over(k, st);
         double e_contact = 0.0;
-        const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, c.st, nullptr, &e_contact);
+        const Vec3 F = law_.force(d_ - dist, nrm, vrel, dt, st, nullptr, &e_contact);
+        xi_[k] = st.xi;
+        c.flags = static_cast<std::uint8_t>((c.flags & kPrev) | (st.stick ? kStick : 0) |
+                                            (st.active ? kActive : 0));
         f[c.node] += F;
         f[ed.a] -= (1 - t) * F;
         f[ed.b] -= t * F;
         // Hessian k w w^T with w = (1, -(1-t), -t): row sums 2k, 2(1-t)k, 2tk
-        const double kc = law_.contact_stiffness(d_ - dist, c.st);
+        const double kc = law_.contact_stiffness(d_ - dist, st);
         stiff.add(c.node, 2 * kc);
         stiff.add(ed.a, 2 * (1 - t) * kc);
         stiff.add(ed.b, 2 * t * kc);
@@ -183,25 +213,29 @@ class NodeEdgeContactPair : public PairStyle {
   }
   void save_state(StateMap& st) const override {
     std::vector<double> flat;
-    for (auto& e : list_)
-      flat.insert(flat.end(), {double(e.node), double(e.edge), e.st.xi.x(), e.st.xi.y(),
-                               e.st.stick ? 1.0 : 0.0, e.st.active ? 1.0 : 0.0, double(e.side)});
+    for (size_t k = 0; k < list_.size(); ++k) {
+      const Entry& e = list_[k];
+      flat.insert(flat.end(), {double(e.node), double(e.edge), xi_[k].x(), xi_[k].y(),
+                               (e.flags & kStick) ? 1.0 : 0.0, (e.flags & kActive) ? 1.0 : 0.0,
+                               double(e.side)});
+    }
     st["history"] = flat;
     save_measured(st, {double(contacts_), stiffness_.omega()});
     schedule_.save(st);
   }
   void load_state(const StateMap& st) override {
     list_.clear();
+    xi_.clear();
     auto& h = st.at("history");
     for (size_t k = 0; k + 7 <= h.size(); k += 7) {
       Entry e;
       e.node = static_cast<int>(h[k]);
       e.edge = static_cast<int>(h[k + 1]);
-      e.st.xi = Vec3(h[k + 2], h[k + 3], 0);
-      e.st.stick = h[k + 4] != 0;
-      e.st.active = h[k + 5] != 0;
-      e.side = static_cast<int>(h[k + 6]);
+      e.flags =
+          static_cast<std::uint8_t>((h[k + 4] != 0 ? kStick : 0) | (h[k + 5] != 0 ? kActive : 0));
+      e.side = static_cast<std::int8_t>(h[k + 6]);
       list_.push_back(e);
+      xi_.emplace_back(h[k + 2], h[k + 3], 0);
     }
     if (auto* m = load_measured(st, 2)) {
       contacts_ = static_cast<int>((*m)[0]);
@@ -216,19 +250,32 @@ class NodeEdgeContactPair : public PairStyle {
  private:
   struct Edge {
     int a, b, chain, index;
+    // a closest point at the tail vertex belongs to the previous edge (not the first edge
+    // of an open chain)
+    bool skip_at_tail;
   };
+  // One listed (node, edge) pair, 16 bytes: the evaluation reads every entry every step and
+  // most are apart, so the hot fields sit together and the stick spring (xi_, by the same
+  // index) is touched only by contacts. With the friction state inside each entry (56
+  // bytes) the list outgrew the core's cache at N = 10^4.
   struct Entry {
     int node = 0, edge = 0;
-    int tail = 0;  // the edge's first node: edge numbers change when a chain grows
-    FrictionState st;
-    bool prev = false;
-    int side = 0;  // +1 / -1: side of the edge the contact was made from; 0: none
+    int tail = 0;            // the edge's first node: edge numbers change when a chain grows
+    std::uint8_t flags = 0;  // kActive, kPrev, kStick
+    std::int8_t side = 0;    // +1 / -1: side of the edge the contact was made from; 0: none
   };
+  // in contact at the last evaluation / at the one before (while evaluating) / stuck
+  static constexpr std::uint8_t kActive = 1, kPrev = 2, kStick = 4;
 
-  // a listed pair out of contact forgets its stick spring and its side
-  static void release(Entry& c) {
-    c.st.stick = false;
-    c.st.xi.setZero();
+  // A listed pair out of contact forgets its stick spring and its side. One that was not in
+  // contact at the last evaluation has nothing to forget (its xi is never read before a
+  // new contact sets it: FrictionState restarts an inactive contact), so its line is not
+  // written.
+  void release(size_t k, bool prev) {
+    Entry& c = list_[k];
+    if (!prev && !(c.flags & kStick) && c.side == 0) return;
+    c.flags = static_cast<std::uint8_t>(c.flags & ~kStick);
+    xi_[k].setZero();
     c.side = 0;
   }
   bool topology_changed(const Simulation&) const {
@@ -265,6 +312,7 @@ class NodeEdgeContactPair : public PairStyle {
     grid_.build(lo, hi, cutoff + 0.5 * lmax, 2, mid_);
 
     old_.swap(list_);
+    old_xi_.swap(xi_);
     list_.clear();
     const double cut2 = cutoff * cutoff;
     // the nodes are cut into one range per thread, each thread lists its nodes' pairs in
@@ -295,35 +343,40 @@ class NodeEdgeContactPair : public PairStyle {
                     }
                   });
     // carry the history of pairs that stay listed, matched by (node, edge tail node)
-    carry_pair_history(
-        old_, list_, [](const Entry& e) { return node_pair_key(e.node, e.tail); },
-        [](const Entry& e) { return e.st.active || e.st.stick || e.side != 0; },
-        [](const Entry& from, Entry& to) {
-          to.st = from.st;
-          to.side = from.side;
+    xi_.assign(list_.size(), Vec3::Zero());
+    carry_pair_history_indexed(
+        old_.size(), list_.size(),
+        [&](size_t k) { return node_pair_key(old_[k].node, old_[k].tail); },
+        [&](size_t k) { return node_pair_key(list_[k].node, list_[k].tail); },
+        [&](size_t k) { return (old_[k].flags & (kActive | kStick)) || old_[k].side != 0; },
+        [&](size_t from, size_t to) {
+          list_[to].flags = static_cast<std::uint8_t>(old_[from].flags & (kActive | kStick));
+          list_[to].side = old_[from].side;
+          xi_[to] = old_xi_[from];
         });
     schedule_.built(sim);
     need_build_ = false;
   }
 
   // A new contact whose node was touching the neighbouring edge of the same chain
-  // at the last evaluation takes over that contact's stick state (MODELS.md §2.3).
-  // Whether another entry was touching then: `prev` for the entries this evaluation has
-  // reached (before k), `st.active` still for those it has not (after k).
-  void hand_over(size_t k) {
-    Entry& c = list_[k];
+  // at the last evaluation (kPrev, set for every entry by pass 1) takes over that
+  // contact's stick state (MODELS.md §2.3): the state as it is when entry k is reached,
+  // i.e. already updated by this evaluation for the entries before k.
+  // Entry k's friction state is in `st` (not yet written back).
+  void hand_over(size_t k, FrictionState& st) const {
+    const Entry& c = list_[k];
     const Edge& ed = edges_[static_cast<size_t>(c.edge)];
     for (size_t j = k; j-- > 0 && list_[j].node == c.node;)
-      try_take(c, ed, list_[j], list_[j].prev);
+      try_take(st, ed, j, list_[j].flags & kPrev);
     for (size_t j = k + 1; j < list_.size() && list_[j].node == c.node; ++j)
-      try_take(c, ed, list_[j], list_[j].st.active);
+      try_take(st, ed, j, list_[j].flags & kPrev);
   }
-  void try_take(Entry& c, const Edge& ed, const Entry& other, bool other_was_active) const {
-    const Edge& eo = edges_[static_cast<size_t>(other.edge)];
+  void try_take(FrictionState& st, const Edge& ed, size_t other, bool other_was_active) const {
+    const Edge& eo = edges_[static_cast<size_t>(list_[other].edge)];
     if (!other_was_active || eo.chain != ed.chain || std::abs(eo.index - ed.index) != 1) return;
-    c.st.xi = other.st.xi;
-    c.st.stick = other.st.stick;
-    c.st.active = true;
+    st.xi = xi_[other];
+    st.stick = list_[other].flags & kStick;
+    st.active = true;
   }
 
   bool tails_from_ids_ = false;
@@ -337,7 +390,15 @@ class NodeEdgeContactPair : public PairStyle {
   std::vector<Edge> edges_;
   std::vector<int> chain_of_, pos_in_chain_;
   std::vector<Entry> list_, old_;
-  std::vector<std::vector<Entry>> part_lists_;  // per thread, while the list is built
+  std::vector<Vec3> xi_, old_xi_;  // stick spring (or last slip direction) of list_[k]
+  std::vector<std::vector<Entry>> part_lists_;
+  // pass 1's pairs for pass 2, per thread: list index, closest point, edge, separation
+  struct Near {
+    size_t k;
+    double t, sx, sy, rx, ry;
+  };
+  std::vector<std::vector<Near>> todo_ =
+      std::vector<std::vector<Near>>(kMaxThreads);  // per thread, while the list is built
   CellGrid grid_;
   std::vector<Vec3> mid_;
   bool need_build_ = true;

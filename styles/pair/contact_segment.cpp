@@ -94,7 +94,7 @@ class SegmentContactPair : public PairStyle {
     const auto& x = sim.nodes().x;
     const auto& v = sim.nodes().v;
     const double dt = sim.dt, reach = 2.0 * a_, reach2 = reach * reach;
-    stiffness_.prepare(sim.threads());
+    stiffness_.prepare(sim.threads(), sim.nodes().size());
     std::array<int, kMaxThreads> count{};
     // each listed pair is one work item: its friction history is its own, its forces go
     // to the thread's buffer (threads.hpp)

@@ -247,21 +247,29 @@ IntegratorStyle& Simulation::set_integrator(const std::string& style, const RawP
 // ---------------------------------------------------------------- forces
 
 void Simulation::build_schedule() {
-  fix_post_force_.clear();
-  fix_end_of_step_.clear();
-  for (auto& f : fixes_) {
-    if ((f->stages() & kPostForce) && !(f->stages() & kMeasure)) fix_post_force_.push_back(f.get());
-    if (f->stages() & kEndOfStep) fix_end_of_step_.push_back(f.get());
-  }
-  for (auto& f : fixes_)
-    if (f->stages() & kMeasure) fix_post_force_.push_back(f.get());
   for (auto& s : shells_) s->setup(*this);
   for (auto& b : bonds_) b->setup(*this);
   for (auto& p : pairs_) p->setup(*this);
   for (auto& f : fixes_)
     if (f->stages() & kSetup) f->setup(*this);
   dof_mask_ = nodes_.find<int>("dof_mask");
+  auto raw = [](const auto& v) {
+    std::vector<typename std::remove_reference_t<decltype(v)>::value_type::pointer> out;
+    for (auto& p : v) out.push_back(p.get());
+    return out;
+  };
+  Schedule::Constraints cons;
+  cons.dof_mask = dof_mask_ != nullptr;
+  cons.plane = dim_ == 2;
+  for (auto& c : coords_)
+    if (c->unit) cons.unit_coordinates.push_back(c->name);
+  schedule_.build(raw(shells_), raw(bonds_), raw(pairs_), raw(fixes_), std::move(cons));
   schedule_dirty_ = false;
+}
+
+const Schedule& Simulation::schedule() {
+  if (schedule_dirty_) build_schedule();
+  return schedule_;
 }
 
 Coordinates& Simulation::coordinates(const std::string& name) {
@@ -286,12 +294,8 @@ void Simulation::compute_forces() {
   for (auto& c : coords_)
     for (auto& f : c->f->values()) f.setZero();
   for (auto& [k, e] : energy_) e = 0.0;
-  for (auto& s : shells_) s->compute(*this);
-  for (auto& b : bonds_) energy_[b->energy_category()] += b->compute(*this);
-  for (auto& p : pairs_) energy_["contact"] += p->compute(*this);
-  double ext = 0.0;
-  for (auto* f : fix_post_force_) ext += f->post_force(*this);
-  energy_["external"] += ext;
+  schedule_.forces(*this, energy_);
+  // the constrain stage
   if (dof_mask_) {
     auto& m = dof_mask_->values();
     for (size_t i = 0; i < m.size(); ++i)
@@ -317,7 +321,7 @@ void Simulation::compute_forces() {
 }
 
 void Simulation::end_of_step() {
-  for (auto* f : fix_end_of_step_) f->end_of_step(*this);
+  schedule_.end_of_step(*this);
 }
 
 double Simulation::kinetic_energy() const {
@@ -473,14 +477,13 @@ void Simulation::setup_run() {
     for (auto& b : bonds_) std::printf(" bond %s %.4g;", b->id().c_str(), b->max_frequency(*this));
     for (const auto& m : measuring_)
       if (m.nominal > 0) std::printf(" %s %.4g;", m.style->id().c_str(), m.nominal);
-    std::printf("\n  forces:");
-    for (auto& s : shells_) std::printf(" shell %s;", s->id().c_str());
-    for (auto& b : bonds_) std::printf(" bond %s;", b->id().c_str());
-    for (auto& p : pairs_) std::printf(" pair %s;", p->id().c_str());
-    for (auto* f : fix_post_force_) std::printf(" fix %s;", f->id().c_str());
-    std::printf("\n  end of step:");
-    for (auto* f : fix_end_of_step_) std::printf(" fix %s;", f->id().c_str());
-    std::printf("\n  node properties:");
+    std::printf("\n  schedule [priority]:\n");
+    std::string lines = schedule_.describe();
+    for (size_t a = 0, b; a < lines.size(); a = b + 1) {
+      b = lines.find('\n', a);
+      std::printf("    %s\n", lines.substr(a, b - a).c_str());
+    }
+    std::printf("  node properties:");
     for (auto& n : nodes_.property_names()) std::printf(" %s", n.c_str());
     std::printf("\n");
   }

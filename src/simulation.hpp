@@ -17,6 +17,7 @@
 #include "cadence.hpp"
 #include "nodes.hpp"
 #include "params.hpp"
+#include "schedule.hpp"
 #include "style.hpp"
 #include "thermo_writer.hpp"
 #include "threads.hpp"
@@ -139,13 +140,17 @@ class Simulation {
   long minimize(double ftol, long max_steps, const std::string& method = "fire",
                 const RawParams& params = {},
                 double ketol = std::numeric_limits<double>::infinity());
-  // Zeroes forces, adds bonds, pairs and fixes; records energies by category.
+  // Zeroes forces and runs the schedule's force, post-force and constrain stages;
+  // records energies by category. Every force evaluation (integrators, minimisers,
+  // observables) comes through here.
   void compute_forces();
   void end_of_step();
   // A style asks the run to end cleanly after the current step (e.g. jamming);
   // run() reports the reason and clears the request.
   void request_stop(const std::string& why) { stop_reason_ = why; }
   const std::string& stop_reason() const { return last_stop_; }
+  // The resolved call lists (resolved now if the scene changed since).
+  const Schedule& schedule();
   // Free degrees of freedom: masked components (clamps) keep zero force.
   const Property<int>* dof_mask() const { return dof_mask_; }
   void set_dof_mask(Property<int>* m) { dof_mask_ = m; }
@@ -229,7 +234,7 @@ class Simulation {
   std::vector<std::unique_ptr<ComputeStyle>> computes_;
   std::vector<std::unique_ptr<DumpStyle>> dumps_;
   std::unique_ptr<IntegratorStyle> integrator_;
-  std::vector<FixStyle*> fix_post_force_, fix_end_of_step_;
+  Schedule schedule_;
   Property<int>* dof_mask_ = nullptr;
   bool schedule_dirty_ = true;
   std::string stop_reason_, last_stop_;

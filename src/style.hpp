@@ -37,6 +37,10 @@ class Style {
   const std::string& id() const { return id_; }
   void set_id(const std::string& s) { id_ = s; }
 
+  // Order within each stage of the schedule (src/schedule.hpp): lower first; equal
+  // priorities keep the order the deck added the styles. Family defaults: shells -100,
+  // bonds and fixes 0, pairs 100.
+  virtual int priority() const { return 0; }
   // Called once the style has its id, before any run: the place to request node
   // properties whose names depend on the id.
   virtual void attach(Simulation&) {}
@@ -72,6 +76,7 @@ class BondStyle : public Style {
 class PairStyle : public Style {
  public:
   static const char* family() { return "pair"; }
+  int priority() const override { return 100; }
   virtual void setup(Simulation&) {}
   virtual double compute(Simulation& sim) = 0;
   virtual double max_frequency(const Simulation& sim) const = 0;
@@ -82,13 +87,15 @@ class PairStyle : public Style {
   virtual std::string neighbor_structure() const { return "pair list"; }
 };
 
-// Step stages a fix can act at.
+// Step stages a fix can act at. A fix that reads the complete forces in post_force (a
+// measured injection force) returns a priority above every other fix's, e.g.
+// kMeasuresForces.
 enum FixStage : unsigned {
   kSetup = 1u << 0,
   kPostForce = 1u << 1,
   kEndOfStep = 1u << 2,
-  kMeasure = 1u << 3,  // post_force after every other fix: sees the complete forces
 };
+inline constexpr int kMeasuresForces = 1000;
 
 class FixStyle : public Style {
  public:
@@ -111,6 +118,8 @@ class FixStyle : public Style {
 class ShellStyle : public Style {
  public:
   static const char* family() { return "shell"; }
+  // first in the force stage: a shell places its ghost nodes, which bonds may read
+  int priority() const override { return -100; }
   virtual void setup(Simulation&) {}
   // Adds forces; records its energies with Simulation::add_energy.
   virtual void compute(Simulation& sim) = 0;

@@ -140,7 +140,9 @@ class WireInjectionFix : public FixStyle {
       if (in_channel(x[i])) drive(sim, i);
   }
   // measured after every other force fix, before the clamp zeroes the channel forces
-  unsigned stages() const override { return kSetup | kPostForce | kMeasure | kEndOfStep; }
+  unsigned stages() const override { return kSetup | kPostForce | kEndOfStep; }
+  // post_force measures the injection force from the complete forces: after every other fix
+  int priority() const override { return kMeasuresForces; }
   void setup(Simulation& sim) override {
     mask_ = sim.nodes().find<int>("dof_mask");
     if (hold_rotation_) {

@@ -308,3 +308,41 @@ TEST(WireInjectionFix, ReleasedNodesGetASeededTransverseKick) {
   for (size_t i = 0; i < std::min(a.size(), c.size()); ++i) differ = differ || a[i] != c[i];
   EXPECT_TRUE(differ);
 }
+
+// The resolved schedule of the 2D crumpling scene (golden): shells, bonds, pairs in the
+// force stage by priority; the feed, which measures the injection force from the complete
+// forces, after every other post-force fix, although the deck adds it before the wall;
+// the core's constraints; removing a fix removes its calls (the mask stays: the feed holds
+// its channel nodes through it).
+TEST(Schedule, ResolvedOrderOfTheCrumplingSceneIsGolden) {
+  auto sim = std::make_unique<Simulation>(2, 1);
+  sim->verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 25; ++i) pts.emplace_back(-12.0 + i, 0, 0);
+  sim->add_chain("wire", pts, 1.0, false);
+  sim->add_pair("contact/node-edge", P({{"stiffness", 1e3}}));  // added first, runs after bonds
+  sim->add_bond("spring", P({{"k", 1000.0}}));
+  sim->add_bond("bend2d", P({{"k", 60.0}}));
+  sim->add_fix("feed", "inject/wire",
+               P({{"chain", std::string("wire")}, {"radius", 10.0}, {"speed", 0.01}}));
+  sim->add_fix("cavity", "wall/circle", P({{"radius", 10.0}, {"stiffness", 500.0}}));
+  sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.1}}));
+  sim->set_group("tip", {12});
+  sim->add_fix("pin", "clamp", P({{"group", std::string("tip")}}));
+  EXPECT_EQ(sim->schedule().describe(),
+            "force: bond spring [0]; bond bend2d [0]; pair contact/node-edge [100]\n"
+            "post-force: fix cavity (wall/circle) [0]; fix drag (damping/viscous) [0]; "
+            "fix feed (inject/wire) [1000]\n"
+            "constrain: clamped components (dof_mask); 2D plane\n"
+            "end of step: fix feed (inject/wire) [1000]\n");
+  // the feed's measured force sees the wall's and the drag's forces: with the nominal
+  // order it would be computed before them
+  ASSERT_EQ(sim->schedule().post_force_fixes().back(), &sim->fix("feed"));
+  sim->remove_fix("drag");
+  sim->remove_fix("pin");
+  EXPECT_EQ(sim->schedule().describe(),
+            "force: bond spring [0]; bond bend2d [0]; pair contact/node-edge [100]\n"
+            "post-force: fix cavity (wall/circle) [0]; fix feed (inject/wire) [1000]\n"
+            "constrain: clamped components (dof_mask); 2D plane\n"
+            "end of step: fix feed (inject/wire) [1000]\n");
+}

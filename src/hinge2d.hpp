@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "nodes.hpp"
+#include "threads.hpp"
 
 namespace slender {
 
@@ -53,6 +54,12 @@ struct Hinge2d {
   }
   void apply(std::vector<Vec3>& f, int a, int m, int b, double M) const {
     apply(f.data(), a, m, b, M);
+  }
+  // The same through a chain kernel's sink, the hinge's first node at chain position p.
+  void apply(ChainForces& f, long p, int a, int m, int b, double M) const {
+    f.at(p + 2, b).head<2>() -= M * gb;
+    f.at(p, a).head<2>() -= M * ga;
+    f.at(p + 1, m).head<2>() += M * (ga + gb);
   }
   // dzeta/dt = sum_j dzeta/dx_j . v_j
   double rate(const std::vector<Vec3>& v, int a, int m, int b) const {

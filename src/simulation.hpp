@@ -97,6 +97,14 @@ class Simulation {
   double parallel_node_forces(std::size_t n, Kernel&& kernel) {
     return parallel_forces(threads_, scratch_, nodes_.f, n, std::forward<Kernel>(kernel));
   }
+  // The same for a kernel over the items of one chain (src/threads.hpp, ChainForces):
+  // bit-identical to one thread, without per-thread force buffers.
+  template <class Kernel>
+  double parallel_chain_forces(std::size_t n, bool closed, long n_positions, long lo, long hi,
+                               Kernel&& kernel) {
+    return slender::parallel_chain_forces(threads_, chain_halos_, nodes_.f, n, closed, n_positions,
+                                          lo, hi, std::forward<Kernel>(kernel));
+  }
 
   // --- building the scene
   Chain& add_chain(const std::string& name, const std::vector<Vec3>& pos, double mass_per_node,
@@ -222,6 +230,7 @@ class Simulation {
   std::mt19937_64 rng_;
   int threads_ = 1;
   ForceScratch scratch_;
+  ChainHalos chain_halos_;
   NodeStore nodes_;
   Topology topo_;
   std::map<std::string, std::unique_ptr<RegionStyle>> regions_;

@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #ifdef _OPENMP
@@ -150,6 +152,79 @@ void parallel_list(int threads, std::size_t n, std::vector<Item>& list,
     const auto& part = parts[static_cast<std::size_t>(t)];
     list.insert(list.end(), part.begin(), part.end());
   }
+}
+
+// Where a kernel over the items of one chain (edges, hinges) adds forces. Item i touches
+// the nodes at chain positions i + lo ... i + hi ("unwrapped": on a closed chain they may
+// run past the end). A thread writes straight into the force array, except at positions
+// that an earlier thread also touches (the first hi positions of its range, and, on the
+// last thread of a closed chain, the positions thread 0 reaches across the seam): those
+// contributions are kept, one entry each, and added after the kernel in thread order.
+// Every node thus receives its contributions in the serial order — the result is
+// bit-identical to one thread — and no O(N) pass over per-thread buffers is needed.
+class ChainForces {
+ public:
+  ChainForces(Vec3* f, std::vector<std::pair<int, Vec3>>* halo, long redirect_below,
+              long redirect_from)
+      : f_(f), halo_(halo), below_(redirect_below), from_(redirect_from) {}
+  // The force of `node` at unwrapped chain position p, to add one contribution to.
+  Vec3& at(long p, int node) {
+    if (p < below_ || p >= from_) {
+      halo_->emplace_back(node, Vec3::Zero());
+      return halo_->back().second;
+    }
+    return f_[node];
+  }
+
+ private:
+  Vec3* f_;
+  std::vector<std::pair<int, Vec3>>* halo_;
+  long below_, from_;
+};
+
+// Per-thread lists of ChainForces' deferred contributions (owned by the Simulation).
+using ChainHalos = std::array<std::vector<std::pair<int, Vec3>>, kMaxThreads>;
+
+// Runs kernel(tid, begin, end, ChainForces& f) over the n items of a chain of n_positions
+// nodes (closed: positions wrap), whose item i touches positions i + lo ... i + hi, and
+// returns the sum of the kernel's return values in thread order.
+template <class Kernel>
+double parallel_chain_forces(int threads, ChainHalos& halos, std::vector<Vec3>& f, std::size_t n,
+                             bool closed, long n_positions, long lo, long hi, Kernel&& kernel) {
+  const int T = threads_for(n, threads);
+  const long none_below = std::numeric_limits<long>::min();
+  const long none_from = std::numeric_limits<long>::max();
+  if (T <= 1) {
+    ChainForces direct(f.data(), nullptr, none_below, none_from);
+    return kernel(0, std::size_t{0}, n, direct);
+  }
+  std::array<double, kMaxThreads> part{};
+#ifdef _OPENMP
+#pragma omp parallel num_threads(T)
+  {
+    const int tid = omp_get_thread_num();
+    std::size_t b, e;
+    thread_range(n, T, tid, b, e);
+    auto& halo = halos[static_cast<std::size_t>(tid)];
+    halo.clear();
+    const long below = tid == 0 ? none_below : static_cast<long>(b) + hi;
+    const long from = closed && tid == T - 1 ? n_positions + lo : none_from;
+    ChainForces sink(f.data(), &halo, below, from);
+    part[static_cast<std::size_t>(tid)] = kernel(tid, b, e, sink);
+  }
+#else
+  (void)closed;
+  (void)n_positions;
+  (void)lo;
+  (void)hi;
+#endif
+  double sum = 0.0;
+  for (int t = 0; t < T; ++t) {
+    for (const auto& [node, F] : halos[static_cast<std::size_t>(t)])
+      f[static_cast<std::size_t>(node)] += F;
+    sum += part[static_cast<std::size_t>(t)];
+  }
+  return sum;
 }
 
 }  // namespace slender

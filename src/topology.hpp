@@ -33,6 +33,9 @@ struct Chain {
       next = nodes[h + 2];
     }
   }
+  // Unwrapped chain position of hinge h's first node (prev); mid and next follow it. A
+  // closed chain's hinge 0 starts at -1 (the positions of ChainForces, src/threads.hpp).
+  long hinge_first_position(int h) const { return closed ? h - 1L : static_cast<long>(h); }
   // Growth at the start (injection): the new node becomes nodes[0].
   void grow_front(int node, double rest) {
     nodes.insert(nodes.begin(), node);

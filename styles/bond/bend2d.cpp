@@ -33,22 +33,24 @@ class Bend2dBond : public ChainBondStyle {
     const auto& v = sim.nodes().v;
     double energy = 0.0;
     for (auto* c : chains(sim)) {
-      energy += sim.parallel_node_forces(static_cast<std::size_t>(c->n_hinges()),
-                                         [&](int, std::size_t begin, std::size_t end, Vec3* f) {
-                                           double e_part = 0.0;
-                                           for (std::size_t h = begin; h < end; ++h) {
-                                             int a, m, b;
-                                             c->hinge(static_cast<int>(h), a, m, b);
-                                             const Hinge2d g(x[a], x[m], x[b]);
-                                             const double zeta = g.zeta;
-                                             double moment = k_ * zeta;
-                                             // dashpot on the turning rate (MODELS.md §2.1)
-                                             if (gamma_ > 0) moment += gamma_ * g.rate(v, a, m, b);
-                                             g.apply(f, a, m, b, moment);
-                                             e_part += 0.5 * k_ * zeta * zeta;
-                                           }
-                                           return e_part;
-                                         });
+      // hinge h touches three consecutive chain positions from hinge_first_position(h)
+      energy += sim.parallel_chain_forces(
+          static_cast<std::size_t>(c->n_hinges()), c->closed, c->n_nodes(), c->closed ? -1 : 0,
+          c->closed ? 1 : 2, [&](int, std::size_t begin, std::size_t end, ChainForces& f) {
+            double e_part = 0.0;
+            for (std::size_t h = begin; h < end; ++h) {
+              int a, m, b;
+              c->hinge(static_cast<int>(h), a, m, b);
+              const Hinge2d g(x[a], x[m], x[b]);
+              const double zeta = g.zeta;
+              double moment = k_ * zeta;
+              // dashpot on the turning rate (MODELS.md §2.1)
+              if (gamma_ > 0) moment += gamma_ * g.rate(v, a, m, b);
+              g.apply(f, c->hinge_first_position(static_cast<int>(h)), a, m, b, moment);
+              e_part += 0.5 * k_ * zeta * zeta;
+            }
+            return e_part;
+          });
     }
     return energy;
   }

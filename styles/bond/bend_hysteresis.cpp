@@ -164,9 +164,9 @@ class BendHysteresisBond : public ChainBondStyle {
     std::array<double, kMaxThreads> lost_part{};
     for (auto* c : chains(sim)) {
       const int T = threads_for(static_cast<std::size_t>(c->n_hinges()), sim.threads());
-      energy += sim.parallel_node_forces(
-          static_cast<std::size_t>(c->n_hinges()),
-          [&](int tid, std::size_t begin, std::size_t end, Vec3* f) {
+      energy += sim.parallel_chain_forces(
+          static_cast<std::size_t>(c->n_hinges()), c->closed, c->n_nodes(), c->closed ? -1 : 0,
+          c->closed ? 1 : 2, [&](int tid, std::size_t begin, std::size_t end, ChainForces& f) {
             double e_part = 0.0;
             double& lost_sum = tid == 0 ? dissipated_ : lost_part[static_cast<std::size_t>(tid)];
             for (std::size_t k = begin; k < end; ++k) {
@@ -183,7 +183,7 @@ class BendHysteresisBond : public ChainBondStyle {
               lost_sum += lost * l0;
               // the dashpot adds gamma_r dzeta/dt (MODELS.md §2.1)
               const double Mt = gamma_ > 0 ? M + gamma_ * g.rate(v, a, m, b) : M;
-              g.apply(f, a, m, b, Mt);
+              g.apply(f, c->hinge_first_position(h), a, m, b, Mt);
               e_part += stored * l0;
             }
             return e_part;

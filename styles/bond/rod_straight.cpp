@@ -40,9 +40,10 @@ class StraightRodBond : public ChainBondStyle {
       for (auto& e : node_energy_->values()) e = 0.0;
     for (auto* c : chains(sim)) {
       const int ne = c->n_edges();
-      energy += sim.parallel_node_forces(
-          static_cast<std::size_t>(c->n_hinges()),
-          [&](int, std::size_t begin, std::size_t end, Vec3* f) {
+      // hinge h touches three consecutive chain positions from hinge_first_position(h)
+      energy += sim.parallel_chain_forces(
+          static_cast<std::size_t>(c->n_hinges()), c->closed, c->n_nodes(), c->closed ? -1 : 0,
+          c->closed ? 1 : 2, [&](int, std::size_t begin, std::size_t end, ChainForces& f) {
             double e_part = 0.0;
             for (std::size_t k = begin; k < end; ++k) {
               const int h = static_cast<int>(k);
@@ -67,9 +68,10 @@ class StraightRodBond : public ChainBondStyle {
               const double s = 2.0 * yi_ / (l * D);
               const Vec3 fa = -s * (2.0 * kb.cross(e1) + kb2 * (e1 + (n1 / n0) * e0));
               const Vec3 fb = -s * (2.0 * kb.cross(e0) - kb2 * (e0 + (n0 / n1) * e1));
-              f[a] += fa;
-              f[b] += fb;
-              f[m] -= fa + fb;
+              const long p = c->hinge_first_position(h);
+              f.at(p, a) += fa;
+              f.at(p + 2, b) += fb;
+              f.at(p + 1, m) -= fa + fb;
             }
             return e_part;
           });

@@ -21,22 +21,24 @@ class SpringBond : public ChainBondStyle {
     const auto& x = sim.nodes().x;
     double energy = 0.0;
     for (auto* c : chains(sim)) {
-      energy += sim.parallel_node_forces(static_cast<std::size_t>(c->n_edges()),
-                                         [&](int, std::size_t begin, std::size_t end, Vec3* f) {
-                                           double e_part = 0.0;
-                                           for (std::size_t k = begin; k < end; ++k) {
-                                             const int e = static_cast<int>(k);
-                                             const int a = c->edge_tail(e), b = c->edge_head(e);
-                                             const Vec3 d = x[b] - x[a];
-                                             const double len = d.norm();
-                                             const double stretch = len - c->rest_length[k];
-                                             const Vec3 fa = (k_ * stretch / len) * d;
-                                             f[a] += fa;
-                                             f[b] -= fa;
-                                             e_part += 0.5 * k_ * stretch * stretch;
-                                           }
-                                           return e_part;
-                                         });
+      // edge k touches chain positions k and k + 1
+      energy += sim.parallel_chain_forces(
+          static_cast<std::size_t>(c->n_edges()), c->closed, c->n_nodes(), 0, 1,
+          [&](int, std::size_t begin, std::size_t end, ChainForces& f) {
+            double e_part = 0.0;
+            for (std::size_t k = begin; k < end; ++k) {
+              const int e = static_cast<int>(k);
+              const int a = c->edge_tail(e), b = c->edge_head(e);
+              const Vec3 d = x[b] - x[a];
+              const double len = d.norm();
+              const double stretch = len - c->rest_length[k];
+              const Vec3 fa = (k_ * stretch / len) * d;
+              f.at(static_cast<long>(k), a) += fa;
+              f.at(static_cast<long>(k) + 1, b) -= fa;
+              e_part += 0.5 * k_ * stretch * stretch;
+            }
+            return e_part;
+          });
     }
     return energy;
   }

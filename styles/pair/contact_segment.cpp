@@ -233,9 +233,11 @@ class SegmentContactPair : public PairStyle {
     double lmax = 0.0;
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     mid_.resize(edges_.size());
+    half_.resize(edges_.size());
     for (size_t k = 0; k < edges_.size(); ++k) {
       const Edge& e = edges_[k];
-      lmax = std::max(lmax, (x[e.b] - x[e.a]).norm());
+      half_[k] = 0.5 * (x[e.b] - x[e.a]).norm();
+      lmax = std::max(lmax, 2.0 * half_[k]);
       lo = lo.cwiseMin(x[e.a]).cwiseMin(x[e.b]);
       hi = hi.cwiseMax(x[e.a]).cwiseMax(x[e.b]);
       mid_[k] = 0.5 * (x[e.a] + x[e.b]);
@@ -254,6 +256,13 @@ class SegmentContactPair : public PairStyle {
                       const size_t first = out.size();
                       grid_.for_each_near(mid_[k], [&](int j) {
                         if (static_cast<size_t>(j) <= k) return;  // each pair once
+                        // two segments within the cutoff have midpoints within cutoff +
+                        // the half lengths: most cell neighbours fail this cheap test (the
+                        // bound is widened by 1e-9 so rounding never drops a pair)
+                        const double reach =
+                            (cutoff + half_[k] + half_[static_cast<size_t>(j)]) * (1.0 + 1e-9);
+                        if ((mid_[static_cast<size_t>(j)] - mid_[k]).squaredNorm() > reach * reach)
+                          return;
                         const Edge& o = edges_[static_cast<size_t>(j)];
                         if (excluded(e, o)) return;
                         double s, t;
@@ -296,6 +305,7 @@ class SegmentContactPair : public PairStyle {
   std::vector<std::vector<Entry>> part_lists_;  // per thread, while the list is built
   CellGrid grid_;
   std::vector<Vec3> mid_;
+  std::vector<double> half_;  // half the length of each edge at the last build
   bool need_build_ = true, bound_ = false;
   int contacts_ = 0;
   NodeStiffness stiffness_;

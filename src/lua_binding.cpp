@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "registry.hpp"
+#include "scene_build.hpp"
 #include "simulation.hpp"
 #include "stiffness.hpp"
 
@@ -62,6 +63,14 @@ double num_arg(lua_State* L, int idx, const char* what) {
   if (lua_type(L, idx) != LUA_TNUMBER)
     throw InputError(std::string("expected a number for ") + what);
   return lua_tonumber(L, idx);
+}
+
+// A node index argument: an integer (10.5 would silently read node 10).
+long index_arg(lua_State* L, int idx, const char* what) {
+  const double v = num_arg(L, idx, what);
+  if (!(std::abs(v) < 9.0e15) || v != std::floor(v))
+    throw InputError(std::string(what) + " must be an integer, got " + std::to_string(v));
+  return static_cast<long>(v);
 }
 
 // Lua value -> raw parameter value (numbers, booleans, strings, flat lists).
@@ -130,15 +139,6 @@ RawParams to_raw(lua_State* L, int idx, const std::vector<std::string>& skip = {
   return raw;
 }
 
-// Node index from the deck: 1-based, negative counts from the end.
-int node_index(long i, size_t n, const std::string& what) {
-  long k = i > 0 ? i - 1 : static_cast<long>(n) + i;
-  if (i == 0 || k < 0 || k >= static_cast<long>(n))
-    throw InputError(what + ": node index " + std::to_string(i) + " out of range 1.." +
-                     std::to_string(n) + " (or -1..-" + std::to_string(n) + ")");
-  return static_cast<int>(k);
-}
-
 // ------------------------------------------------------------ commands
 
 ParamSpec simulation_spec() {
@@ -146,34 +146,6 @@ ParamSpec simulation_spec() {
   s.integer("dimension", "2 or 3").def(3.0).min(2).max(3);
   s.integer("seed", "seed of the scene's random stream").def(1.0).min(0);
   s.boolean("quiet", "no run summaries or thermo on the console").def(false);
-  return s;
-}
-
-ParamSpec wire_spec() {
-  ParamSpec s("command", "wire",
-              "sim:wire{...}: a chain of nodes (straight, circular or from points)");
-  s.string("name", "chain name (also a node group)").required();
-  s.integer("nodes", "number of nodes").min(2);
-  s.real("spacing", "rest length of each edge").def(1.0).positive();
-  s.vector("start", "first node (or circle centre)").def(std::vector<double>{0, 0, 0}).length(2, 3);
-  s.vector("direction", "direction of a straight wire")
-      .def(std::vector<double>{1, 0, 0})
-      .length(2, 3);
-  s.real("radius", "place the nodes on a closed circle of this radius in the xy plane").positive();
-  s.boolean("closed", "connect the last node to the first").def(false);
-  s.real("mass", "mass of each node").def(1.0).positive();
-  s.real("perturb", "random displacement amplitude normal to the wire (seeded)")
-      .def(0.0)
-      .nonnegative();
-  s.vector("points", "explicit node positions {{x,y[,z]}, ...} (instead of nodes/spacing)");
-  return s;
-}
-
-ParamSpec group_spec() {
-  ParamSpec s("command", "group", "sim:group(name, {...}): a named set of nodes");
-  s.string("chain", "take nodes of this chain (indices below count along it)");
-  s.add("nodes", ParamType::IntList, "1-based indices; negative counts from the end");
-  s.string("region", "nodes inside this region (intersected with the above)");
   return s;
 }
 
@@ -377,38 +349,7 @@ int l_wire(lua_State* L) {
   Simulation& sim = sim_arg(L);
   if (!lua_istable(L, 2)) throw InputError("wire: expected a table {name = ..., nodes = ...}");
   std::vector<Vec3> pts = read_points(L, 2);
-  auto p = wire_spec().validate(to_raw(L, 2, {"points"}));
-  bool closed = p.boolean("closed");
-  if (pts.empty()) {
-    if (!p.has("nodes")) throw InputError("wire: give either nodes = N or points = {...}");
-    const long n = p.integer("nodes");
-    const double h = p.real("spacing");
-    const Vec3 start = p.vec3("start");
-    if (p.has("radius")) {
-      const double R = p.real("radius");
-      for (long i = 0; i < n; ++i) {
-        double a = 2 * M_PI * i / n;
-        pts.push_back(start + R * Vec3(std::cos(a), std::sin(a), 0));
-      }
-      closed = true;
-    } else {
-      Vec3 dir = p.vec3("direction");
-      if (dir.norm() == 0) throw InputError("wire: direction must be non-zero");
-      dir.normalize();
-      for (long i = 0; i < n; ++i) pts.push_back(start + (h * i) * dir);
-    }
-  }
-  const double amp = p.real("perturb");
-  if (amp > 0) {
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (size_t i = 1; i + 1 < pts.size(); ++i) {
-      Vec3 t = (pts[i + 1] - pts[i - 1]).normalized();
-      Vec3 d(u(sim.rng()), u(sim.rng()), sim.dimension() == 3 ? u(sim.rng()) : 0.0);
-      d -= d.dot(t) * t;
-      pts[i] += amp * d;
-    }
-  }
-  Chain& c = sim.add_chain(p.str("name"), pts, p.real("mass"), closed);
+  Chain& c = add_wire(sim, to_raw(L, 2, {"points"}), std::move(pts));
   lua_pushinteger(L, c.n_nodes());
   return 1;
 }
@@ -416,33 +357,7 @@ int l_wire(lua_State* L) {
 int l_group(lua_State* L) {
   Simulation& sim = sim_arg(L);
   std::string name = str_arg(L, 2, "the group name");
-  auto p = group_spec().validate(to_raw(L, 3));
-  std::vector<int> sel;
-  if (p.has("chain")) {
-    Chain* c = sim.topology().find(p.str("chain"));
-    if (!c) throw InputError("group '" + name + "': unknown chain '" + p.str("chain") + "'");
-    if (p.has("nodes"))
-      for (long i : p.integers("nodes"))
-        sel.push_back(c->nodes[node_index(i, c->nodes.size(), "group " + name)]);
-    else
-      sel = c->nodes;
-  } else if (p.has("nodes")) {
-    for (long i : p.integers("nodes"))
-      sel.push_back(node_index(i, sim.nodes().size(), "group " + name));
-  } else {
-    sel = sim.group("all");
-  }
-  if (p.has("region")) {
-    RegionStyle& r = sim.region(p.str("region"));
-    std::vector<int> in;
-    for (int i : sel)
-      if (r.contains(sim.nodes().x[i])) in.push_back(i);
-    sel = in;
-  }
-  if (sel.empty()) throw InputError("group '" + name + "' would be empty");
-  const auto count = static_cast<lua_Integer>(sel.size());
-  sim.set_group(name, std::move(sel));
-  lua_pushinteger(L, count);
+  lua_pushinteger(L, static_cast<lua_Integer>(add_group(sim, name, to_raw(L, 3))));
   return 1;
 }
 
@@ -748,26 +663,22 @@ int push_vec(lua_State* L, const Vec3& v, int dim) {
 }
 int l_position(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(),
-                     "position");
+  int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "position");
   return push_vec(L, sim.nodes().x[i], sim.dimension());
 }
 int l_velocity(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(),
-                     "velocity");
+  int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "velocity");
   return push_vec(L, sim.nodes().v[i], sim.dimension());
 }
 int l_force(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i =
-      node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(), "force");
+  int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "force");
   return push_vec(L, sim.nodes().f[i], sim.dimension());
 }
 int l_set_position(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  int i = node_index(static_cast<long>(num_arg(L, 2, "the node index")), sim.nodes().size(),
-                     "set_position");
+  int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "set_position");
   Value v = to_value(L, 3, "position");
   auto* d = std::get_if<std::vector<double>>(&v);
   if (!d || d->size() < 2 || d->size() > 3) throw InputError("set_position: expected {x, y[, z]}");
@@ -782,8 +693,7 @@ int l_chain_node(lua_State* L) {
   std::string name = str_arg(L, 2, "the chain name");
   Chain* c = sim.topology().find(name);
   if (!c) throw InputError("unknown chain '" + name + "'");
-  int k = node_index(static_cast<long>(num_arg(L, 3, "the index along the chain")), c->nodes.size(),
-                     name);
+  int k = node_index(index_arg(L, 3, "the index along the chain"), c->nodes.size(), name);
   lua_pushinteger(L, c->nodes[k] + 1);
   return 1;
 }

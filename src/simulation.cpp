@@ -40,20 +40,27 @@ Chain& Simulation::add_chain(const std::string& name, const std::vector<Vec3>& p
   if (topo_.find(name)) throw InputError("a chain named '" + name + "' already exists");
   if (pos.size() < 2) throw InputError("chain '" + name + "' needs at least 2 nodes");
   if (closed && pos.size() < 3) throw InputError("closed chain '" + name + "' needs 3 nodes");
+  // everything is checked before the first node is added: a refused chain leaves no nodes
+  std::vector<Vec3> q(pos);
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (dim_ == 2) q[i].z() = 0.0;
+    if (!q[i].allFinite())
+      throw InputError("chain '" + name + "': node " + std::to_string(i + 1) +
+                       " has a non-finite position (" + std::to_string(q[i].x()) + ", " +
+                       std::to_string(q[i].y()) + ", " + std::to_string(q[i].z()) + ")");
+  }
   Chain c;
   c.name = name;
   c.closed = closed;
-  for (auto& p : pos) {
-    Vec3 q = p;
-    if (dim_ == 2) q.z() = 0.0;
-    c.nodes.push_back(static_cast<int>(nodes_.add(q, mass_per_node)));
-  }
-  const int ne = closed ? c.n_nodes() : c.n_nodes() - 1;
-  for (int e = 0; e < ne; ++e) {
-    double l = (nodes_.x[c.edge_head(e)] - nodes_.x[c.edge_tail(e)]).norm();
-    if (!(l > 0)) throw InputError("chain '" + name + "' has two coincident nodes");
+  const std::size_t n = q.size(), ne = closed ? n : n - 1;
+  for (std::size_t e = 0; e < ne; ++e) {
+    const double l = (q[(e + 1) % n] - q[e]).norm();
+    if (!(l > 0))
+      throw InputError("chain '" + name + "': nodes " + std::to_string(e + 1) + " and " +
+                       std::to_string((e + 1) % n + 1) + " coincide (rest length 0)");
     c.rest_length.push_back(l);
   }
+  for (auto& p : q) c.nodes.push_back(static_cast<int>(nodes_.add(p, mass_per_node)));
   topo_.chains.push_back(std::move(c));
   groups_[name] = topo_.chains.back().nodes;
   schedule_dirty_ = true;  // chain pointers held by styles may have moved
@@ -93,6 +100,8 @@ RegionStyle& Simulation::region(const std::string& id) {
 }
 
 void Simulation::set_group(const std::string& name, std::vector<int> idx) {
+  if (name == "all")
+    throw InputError("group 'all' is every node and cannot be redefined: choose another name");
   for (int i : idx)
     if (i < 0 || static_cast<size_t>(i) >= nodes_.size())
       throw InputError("group '" + name + "': node index out of range");

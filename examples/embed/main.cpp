@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "scene_build.hpp"
 #include "simulation.hpp"
 
 int main() {
@@ -15,9 +16,10 @@ int main() {
   const double L = 20.0, k_bend = 60.0, P = 1e-4;  // EI = k_bend * segment length
   Simulation sim(2, 1);
   sim.verbose = false;
-  std::vector<Vec3> pts;
-  for (int i = 0; i < n; ++i) pts.emplace_back(i * L / (n - 1), 0.0, 0.0);
-  sim.add_chain("wire", pts, 1.0, false);
+  // the deck's sim:wire{...}, from the same parameter declarations (src/scene_build.hpp)
+  add_wire(sim, RawParams{{"name", std::string("wire")},
+                          {"nodes", double(n)},
+                          {"spacing", L / (n - 1)}});
   sim.add_bond("spring", RawParams{{"k", 1000.0}});
   sim.add_bond("bend2d", RawParams{{"k", k_bend}});
   sim.set_group("root", {0});

@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "helpers.hpp"
 #include "registry.hpp"
+#include "scene_build.hpp"
 #include "stiffness.hpp"
 #ifdef SLENDER_HAVE_HDF5
 #include "h5util.hpp"
@@ -479,4 +481,73 @@ TEST(Thermo, IntervalWritesTheSameTimesAtAnyStep) {
   EXPECT_EQ(lines, static_cast<int>(std::floor(1000 * 0.007 / 0.3)));
   EXPECT_TRUE(c.due_at(0, 0.0));
   EXPECT_FALSE(c.due_at(5, 0.035));
+}
+
+// Scene construction through the C++ API (src/scene_build.hpp), as decks reach it: generated
+// and explicit wires, groups, and the inputs it refuses instead of ignoring.
+TEST(SceneBuild, WiresAndGroupsFromParameters) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  Chain& ring = add_wire(sim, P({{"name", std::string("ring")}, {"nodes", 12.0}, {"radius", 3.0}}));
+  EXPECT_TRUE(ring.closed);
+  EXPECT_NEAR(sim.nodes().x[ring.nodes[3]].y(), 3.0, 1e-12);
+  Chain& line =
+      add_wire(sim, P({{"name", std::string("line")}, {"nodes", 5.0}, {"spacing", 0.5}}), {});
+  EXPECT_EQ(line.n_nodes(), 5);
+  EXPECT_DOUBLE_EQ(line.rest_length[0], 0.5);
+  EXPECT_EQ(add_group(sim, "ends",
+                      P({{"chain", std::string("line")}, {"nodes", std::vector<double>{1, -1}}})),
+            2u);
+  EXPECT_EQ(sim.group("ends"), (std::vector<int>{line.nodes.front(), line.nodes.back()}));
+  const std::size_t before = sim.nodes().size();
+  auto refuses = [&](auto&& build, const std::string& says) {
+    try {
+      build();
+      ADD_FAILURE() << "accepted; expected: " << says;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(sim.nodes().size(), before) << "a refused command left nodes behind";
+  };
+  refuses(
+      [&] {
+        add_wire(sim, P({{"name", std::string("p")}, {"nodes", 9.0}}),
+                 {Vec3(0, 0, 0), Vec3(1, 0, 0)});
+      },
+      "'nodes' describes a generated wire");
+  refuses(
+      [&] {
+        add_wire(
+            sim,
+            P({{"name", std::string("c")}, {"nodes", 9.0}, {"radius", 2.0}, {"closed", false}}));
+      },
+      "closed = false contradicts it");
+  refuses(
+      [&] {
+        add_wire(
+            sim, P({{"name", std::string("inf")}}),
+            {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(std::numeric_limits<double>::infinity(), 0, 0)});
+      },
+      "node 3 has a non-finite position");
+  refuses(
+      [&] {
+        add_wire(sim, P({{"name", std::string("nan")}}), {Vec3(0, 0, 0), Vec3(std::nan(""), 0, 0)});
+      },
+      "node 2 has a non-finite position");
+  refuses(
+      [&] {
+        add_wire(sim, P({{"name", std::string("same")}}),
+                 {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 0)});
+      },
+      "nodes 2 and 3 coincide");
+  refuses(
+      [&] {
+        add_group(sim, "all", P({{"chain", std::string("line")}}));
+      },
+      "group 'all' is every node");
+  refuses(
+      [&] {
+        add_group(sim, "g", P({{"chain", std::string("line")}, {"nodes", std::vector<double>{6}}}));
+      },
+      "node index 6 out of range 1..5");
 }

@@ -1,0 +1,135 @@
+#include "scene_build.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <unistd.h>
+
+namespace slender {
+
+ParamSpec wire_spec() {
+  ParamSpec s("command", "wire",
+              "sim:wire{...}: a chain of nodes (straight, circular or from points)");
+  s.string("name", "chain name (also a node group)").required();
+  s.integer("nodes", "number of nodes (not with points)").min(2);
+  s.real("spacing", "rest length of each edge").def(1.0).positive();
+  s.vector("start", "first node (or circle centre)").def(std::vector<double>{0, 0, 0}).length(2, 3);
+  s.vector("direction", "direction of a straight wire")
+      .def(std::vector<double>{1, 0, 0})
+      .length(2, 3);
+  s.real("radius",
+         "place the nodes on a closed circle of this radius in the xy plane (closed by itself)")
+      .positive();
+  s.boolean("closed", "connect the last node to the first").def(false);
+  s.real("mass", "mass of each node").def(1.0).positive();
+  s.real("perturb", "random displacement amplitude normal to the wire (seeded)")
+      .def(0.0)
+      .nonnegative();
+  s.vector("points", "explicit node positions {{x,y[,z]}, ...} (instead of nodes/spacing)");
+  return s;
+}
+
+Chain& add_wire(Simulation& sim, const RawParams& raw, std::vector<Vec3> pts) {
+  auto p = wire_spec().validate(raw);
+  bool closed = p.boolean("closed");
+  if (!pts.empty()) {
+    // a generated wire's keys would be ignored: say so instead
+    for (const char* key : {"nodes", "radius", "spacing", "start", "direction"})
+      if (raw.count(key))
+        throw InputError(std::string("wire: '") + key +
+                         "' describes a generated wire; with points = {...} the points alone "
+                         "place the nodes (leave out '" +
+                         key + "')");
+  } else {
+    if (!p.has("nodes")) throw InputError("wire: give either nodes = N or points = {...}");
+    const long n = p.integer("nodes");
+    // a size that cannot fit is refused with the estimate, not left to std::bad_alloc:
+    // position, velocity, force (3 x 24 bytes) and mass per node at the least
+    const double need = 80.0 * static_cast<double>(n);
+    const double have =
+        static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+    if (have > 0 && need > have)
+      throw InputError("wire: nodes = " + std::to_string(n) + " needs at least " +
+                       std::to_string(need / (1 << 30)) + " GiB, more than this machine's " +
+                       std::to_string(have / (1 << 30)) + " GiB of memory");
+    const double h = p.real("spacing");
+    const Vec3 start = p.vec3("start");
+    if (p.has("radius")) {
+      if (raw.count("closed") && !closed)
+        throw InputError(
+            "wire: a wire with a radius is a closed circle; closed = false contradicts it (leave "
+            "out closed, or give direction and spacing for a straight wire)");
+      const double R = p.real("radius");
+      for (long i = 0; i < n; ++i) {
+        double a = 2 * M_PI * i / n;
+        pts.push_back(start + R * Vec3(std::cos(a), std::sin(a), 0));
+      }
+      closed = true;
+    } else {
+      Vec3 dir = p.vec3("direction");
+      if (dir.norm() == 0) throw InputError("wire: direction must be non-zero");
+      dir.normalize();
+      for (long i = 0; i < n; ++i) pts.push_back(start + (h * i) * dir);
+    }
+  }
+  const double amp = p.real("perturb");
+  if (amp > 0) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (size_t i = 1; i + 1 < pts.size(); ++i) {
+      Vec3 t = (pts[i + 1] - pts[i - 1]).normalized();
+      Vec3 d(u(sim.rng()), u(sim.rng()), sim.dimension() == 3 ? u(sim.rng()) : 0.0);
+      d -= d.dot(t) * t;
+      pts[i] += amp * d;
+    }
+  }
+  return sim.add_chain(p.str("name"), pts, p.real("mass"), closed);
+}
+
+ParamSpec group_spec() {
+  ParamSpec s("command", "group", "sim:group(name, {...}): a named set of nodes");
+  s.string("chain", "take nodes of this chain (indices below count along it)");
+  s.add("nodes", ParamType::IntList, "1-based indices; negative counts from the end");
+  s.string("region", "nodes inside this region (intersected with the above)");
+  return s;
+}
+
+std::size_t add_group(Simulation& sim, const std::string& name, const RawParams& raw) {
+  auto p = group_spec().validate(raw);
+  std::vector<int> sel;
+  if (p.has("chain")) {
+    Chain* c = sim.topology().find(p.str("chain"));
+    if (!c) throw InputError("group '" + name + "': unknown chain '" + p.str("chain") + "'");
+    if (p.has("nodes"))
+      for (long i : p.integers("nodes"))
+        sel.push_back(
+            c->nodes[static_cast<std::size_t>(node_index(i, c->nodes.size(), "group " + name))]);
+    else
+      sel = c->nodes;
+  } else if (p.has("nodes")) {
+    for (long i : p.integers("nodes"))
+      sel.push_back(node_index(i, sim.nodes().size(), "group " + name));
+  } else {
+    sel = sim.group("all");
+  }
+  if (p.has("region")) {
+    RegionStyle& r = sim.region(p.str("region"));
+    std::vector<int> in;
+    for (int i : sel)
+      if (r.contains(sim.nodes().x[static_cast<std::size_t>(i)])) in.push_back(i);
+    sel = in;
+  }
+  if (sel.empty()) throw InputError("group '" + name + "' would be empty");
+  const std::size_t count = sel.size();
+  sim.set_group(name, std::move(sel));
+  return count;
+}
+
+int node_index(long i, std::size_t n, const std::string& what) {
+  long k = i > 0 ? i - 1 : static_cast<long>(n) + i;
+  if (i == 0 || k < 0 || k >= static_cast<long>(n))
+    throw InputError(what + ": node index " + std::to_string(i) + " out of range 1.." +
+                     std::to_string(n) + " (or -1..-" + std::to_string(n) + ")");
+  return static_cast<int>(k);
+}
+
+}  // namespace slender

@@ -101,6 +101,20 @@ void Simulation::read_checkpoint(const std::string& path) {
   if (static_cast<int>(sc[4]) != dim_)
     throw InputError("checkpoint '" + path + "' is " + std::to_string(int(sc[4])) +
                      "D, the scene is " + std::to_string(dim_) + "D");
+  // the chains must match both ways (checked before anything is read into the scene): a
+  // chain of the file that the scene lacks would leave its nodes in the arrays without a
+  // chain, orphans that no bond holds
+  {
+    auto file_chains = h5::open_group(f, "chains");
+    for (auto& name : h5::children(file_chains))
+      if (!topo_.find(name))
+        throw InputError("checkpoint '" + path + "' has chain '" + name +
+                         "' that this scene does not define: the deck differs from the one "
+                         "that wrote it");
+    for (auto& c : topo_.chains)
+      if (!h5::exists(file_chains, c.name))
+        throw InputError("checkpoint '" + path + "' has no chain '" + c.name + "'");
+  }
   // styles create some node properties when they first bind (e.g. the shell's
   // dof_mask for its ghosts): bind them now, so a fresh scene that has not run yet
   // holds the same properties as the run that wrote the checkpoint

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include "registry.hpp"
@@ -31,6 +32,7 @@ const char* kSimMeta = "slender.Simulation";
 // Per-deck context kept in the Lua state's extra space: no globals.
 struct DeckContext {
   DeckOptions opt;
+  std::set<std::string> vars_read;  // -v names the deck asked for (slender.var)
   bool instability = false;
   std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
 };
@@ -740,6 +742,7 @@ int l_read_checkpoint(lua_State* L) {
 
 int l_var(lua_State* L) {
   std::string name = str_arg(L, 1, "the variable name");
+  context(L)->vars_read.insert(name);
   auto& vars = context(L)->opt.vars;
   auto it = vars.find(name);
   if (it == vars.end()) {
@@ -893,7 +896,7 @@ int traceback_free_handler(lua_State* L) {
 }  // namespace
 
 void open_slender(lua_State* L, const DeckOptions& opt) {
-  auto* ctx = new DeckContext{opt};
+  auto* ctx = new DeckContext{opt, {}};
   context(L) = ctx;
   if (luaL_newmetatable(L, kSimMeta)) {
     lua_newtable(L);
@@ -943,6 +946,15 @@ int run_deck(const DeckOptions& opt) {
   }
   std::fflush(stdout);
   DeckContext* ctx = context(L);
+  // a -v the deck never read is most likely a typo (-v f=50 for a deck that reads "F"): the
+  // run did not use it, and nothing else would say so
+  if (code == 0)
+    for (const auto& [name, value] : ctx->opt.vars)
+      if (!ctx->vars_read.count(name))
+        std::fprintf(stderr,
+                     "slender: warning: -v %s=%s was never read by the deck (slender.var(\"%s\")); "
+                     "the run did not use it\n",
+                     name.c_str(), value.c_str(), name.c_str());
   lua_close(L);  // collects simulations: outputs are flushed and closed
   delete ctx;
   return code;

@@ -145,6 +145,13 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
         throw InputError(who + ": key '" + d.name + "' = " + fmt(x) + " is out of range " +
                          d.range_text());
     };
+    // integers travel as doubles (Lua numbers): beyond 2^53 they are no longer exact, and
+    // beyond a long they would overflow (steps = 2^63 came out as a negative count)
+    auto check_whole = [&](double x) {
+      if (std::abs(x) > 9007199254740992.0)
+        throw InputError(who + ": key '" + d.name + "' = " + fmt(x) +
+                         " is too large for an integer (at most 2^53 = 9007199254740992)");
+    };
     switch (d.type) {
       case ParamType::Real:
         if (!std::holds_alternative<double>(v)) throw mistyped();
@@ -154,6 +161,7 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
         if (!std::holds_alternative<double>(v)) throw mistyped();
         double x = std::get<double>(v);
         if (x != std::floor(x)) throw mistyped();
+        check_whole(x);
         check_range(x);
         break;
       }
@@ -199,6 +207,7 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
                            " values, got " + std::to_string(vv.size()));
         for (double x : vv) {
           if (d.type == ParamType::IntList && x != std::floor(x)) throw mistyped();
+          if (d.type == ParamType::IntList) check_whole(x);
           check_range(x);
         }
         break;

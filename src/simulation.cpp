@@ -445,7 +445,22 @@ double Simulation::column(const std::string& name) {
     if (key == "potential") return potential_energy();
     if (key == "total") return kinetic_energy() + potential_energy();
     auto it = energy_.find(key);
-    return it == energy_.end() ? 0.0 : it->second;
+    if (it != energy_.end()) return it->second;
+    // a category of the built-in styles that this scene lacks is 0 (one deck's columns serve
+    // scenes with and without torsion); any other name is a typo, not a zero energy. Once
+    // the forces have been evaluated every category of the scene (plugins' too) is listed.
+    static const char* const built_in[] = {"stretch", "bend",    "twist",   "coupling",
+                                           "damping", "contact", "external"};
+    for (const char* c : built_in)
+      if (key == c) return 0.0;
+    if (!forces_valid) return 0.0;
+    std::string known = "kinetic, potential, total";
+    for (const char* c : built_in) known += std::string(", ") + c;
+    for (const auto& [k, e] : energy_)
+      if (std::find(std::begin(built_in), std::end(built_in), k) == std::end(built_in))
+        known += ", " + k;
+    throw InputError("thermo column '" + name + "': no energy '" + key + "' in this scene (" +
+                     known + ")");
   }
   Style* s = find_style(id);
   if (!s)

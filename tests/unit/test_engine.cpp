@@ -51,6 +51,8 @@ TEST(Params, ValidationMessagesNameTheProblem) {
   expect_msg(P({{"k", 0.0}}), "'k' = 0 is out of range (0, inf]");
   expect_msg(P({{"k", 1.0}, {"n", 2.5}}), "'n' expects a integer");
   expect_msg(P({{"k", 1.0}, {"n", 9.0}}), "out of range [1, 5]");
+  // an integer beyond 2^53 is refused by size, before it could overflow (seed = 1e20)
+  expect_msg(P({{"k", 1.0}, {"n", 1e20}}), "'n' = 1e+20 is too large for an integer");
   expect_msg(P({{"k", 1.0}, {"mode", std::string("c")}}), "is not one of \"a\" \"b\"");
   expect_msg(P({{"k", 1.0}, {"v", std::vector<double>{1}}}), "needs 2 to 3 values");
   auto ok = s.validate(P({{"k", 2.0}}));
@@ -400,7 +402,26 @@ TEST(Checkpoint, RestartIsBitIdenticalAndRejectsOtherScenes) {
   other.set_integrator("verlet", P({{"dt", 0.01}}));
   EXPECT_THROW(other.read_checkpoint("test_ck.h5"), InputError);
   EXPECT_THROW(other.read_checkpoint("does_not_exist.h5"), InputError);
+  // a checkpoint of two chains into a scene of one of them: refused, and nothing is read
+  // (the second chain's nodes would stay in the arrays as orphans)
+  auto two = make();
+  two->add_chain("v", wiggly_chain(15, 2, 8, 0.2), 1.0, false);
+  two->run(RunOptions{10, 0, {}});
+  two->write_checkpoint("test_ck2.h5");
+  auto one = make();
+  const Vec3 x0 = one->nodes().x[3];
+  try {
+    one->read_checkpoint("test_ck2.h5");
+    ADD_FAILURE() << "a checkpoint with an extra chain was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("has chain 'v' that this scene does not define"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(one->nodes().size(), 15u);
+  EXPECT_EQ(one->nodes().x[3], x0);
   std::remove("test_ck.h5");
+  std::remove("test_ck2.h5");
 }
 #endif
 

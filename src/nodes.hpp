@@ -62,6 +62,10 @@ class PropertyBase {
   // Flat copies, ncomp values per node, for checkpoints and dumps.
   virtual std::vector<double> to_flat() const = 0;
   virtual void from_flat(const std::vector<double>& flat) = 0;
+  // The guard's last good state: keep() copies the values aside (reusing the memory),
+  // restore_kept() puts them back; false if nothing of this size was kept.
+  virtual void keep() = 0;
+  virtual bool restore_kept() = 0;
 
  private:
   std::string name_;
@@ -94,6 +98,15 @@ class Property final : public PropertyBase {
     }
     return out;
   }
+  void keep() override {
+    kept_ = data_;
+    has_kept_ = true;
+  }
+  bool restore_kept() override {
+    if (!has_kept_ || kept_.size() != data_.size()) return false;
+    data_ = kept_;
+    return true;
+  }
   void from_flat(const std::vector<double>& flat) override {
     data_.resize(flat.size() / ncomp());
     for (size_t i = 0; i < data_.size(); ++i) {
@@ -108,6 +121,8 @@ class Property final : public PropertyBase {
   }
 
  private:
+  std::vector<T> kept_;
+  bool has_kept_ = false;
   T init_;
   std::vector<T> data_;
 };

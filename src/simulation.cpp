@@ -69,6 +69,7 @@ Chain& Simulation::add_chain(const std::string& name, const std::vector<Vec3>& p
 
 int Simulation::grow_chain(const std::string& name, bool at_front, const Vec3& pos, double mass,
                            double rest) {
+  good_state_stale_ = true;  // the guard saves a new one at its next check
   Chain* c = topo_.find(name);
   if (!c) throw InputError("unknown chain '" + name + "'");
   Vec3 q = pos;
@@ -181,21 +182,22 @@ GrowthStyle& Simulation::growth(const std::string& id) {
   if (it == growths_.end()) throw InputError("unknown growth '" + id + "'");
   return *it->second;
 }
+std::vector<Style*> Simulation::styles() const {
+  std::vector<Style*> all;
+  for (auto& s : shells_) all.push_back(s.get());
+  for (auto& [id, g] : growths_) all.push_back(g.get());
+  for (auto& b : bonds_) all.push_back(b.get());
+  for (auto& p : pairs_) all.push_back(p.get());
+  for (auto& f : fixes_) all.push_back(f.get());
+  for (auto& c : computes_) all.push_back(c.get());
+  for (auto& d : dumps_) all.push_back(d.get());
+  if (integrator_) all.push_back(integrator_.get());
+  return all;
+}
+
 Style* Simulation::find_style(const std::string& id) {
-  if (integrator_ && integrator_->id() == id) return integrator_.get();
-  for (auto& s : shells_)
-    if (s->id() == id) return s.get();
-  if (auto it = growths_.find(id); it != growths_.end()) return it->second.get();
-  for (auto& f : fixes_)
-    if (f->id() == id) return f.get();
-  for (auto& c : computes_)
-    if (c->id() == id) return c.get();
-  for (auto& b : bonds_)
-    if (b->id() == id) return b.get();
-  for (auto& b : pairs_)
-    if (b->id() == id) return b.get();
-  for (auto& d : dumps_)
-    if (d->id() == id) return d.get();
+  for (Style* s : styles())
+    if (s->id() == id) return s;
   return nullptr;
 }
 FixStyle& Simulation::add_fix(const std::string& id, const std::string& style, const RawParams& p) {

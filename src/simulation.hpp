@@ -132,6 +132,9 @@ class Simulation {
   FixStyle& fix(const std::string& id);
   ComputeStyle& compute(const std::string& id);
   Style* find_style(const std::string& id);
+  // Every style of the scene, families in a fixed order (shells, growths, bonds, pairs,
+  // fixes, computes, dumps, the integrator), each in the order the deck added it.
+  std::vector<Style*> styles() const;
   IntegratorStyle* integrator() { return integrator_.get(); }
   const std::vector<std::unique_ptr<BondStyle>>& bonds() const { return bonds_; }
   const std::vector<std::unique_ptr<PairStyle>>& pairs() const { return pairs_; }
@@ -216,6 +219,7 @@ class Simulation {
   void build_schedule();
   void check_guard(long step_in_run);
   void save_good_state();
+  std::string last_good_problem() const;
   // Guard, thermo and dumps after step k of a run or minimisation, which took the clock
   // from t0 to time.
   void after_step(long k, bool last, double t0);
@@ -254,6 +258,10 @@ class Simulation {
   // guard state
   std::vector<Vec3> good_x_, good_v_;
   long good_step_ = -1;
+  std::map<std::string, double> good_energy_;
+  // a node was added since the last good state (chains grow at injection): the snapshot
+  // no longer matches the arrays
+  bool good_state_stale_ = false;
   double good_time_ = 0.0;
   double energy_scale_ = 0.0;
   // nominal frequencies cached at the start of a run (a shell whose growth stiffens it

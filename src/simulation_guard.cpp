@@ -31,37 +31,46 @@ void Simulation::fail(const std::string& what, long bad_step) {
   // inspect it or continue with a smaller dt. Forces and history arrays (e.g. Gear
   // derivatives) of the bad steps are not part of it: they are reset, never written
   // as NaN.
-  if (good_step_ >= 0) {
+  if (good_step_ >= 0 && !good_state_stale_ && good_x_.size() == nodes_.size()) {
     nodes_.x = good_x_;
     nodes_.v = good_v_;
     for (size_t k = 0; k < coords_.size() && k < good_q_.size(); ++k) {
       coords_[k]->q->values() = good_q_[k];
       coords_[k]->v->values() = good_qv_[k];
     }
+    // every saved node property (plastic curvature, wall springs, ...) and every style's
+    // state (pair lists, dissipated energy, the feed) as they were at the good step
+    std::string missing;
+    for (auto& [name, p] : nodes_.properties())
+      if (p->options().restart && !p->restore_kept())
+        missing += (missing.empty() ? "" : ", ") + name;
+    for (Style* s : styles()) s->restore_kept();
+    energy_ = good_energy_;
     step = good_step_;
     time = good_time_;
     for (auto& f : nodes_.f) f.setZero();
     forces_valid = false;
     ++state_epoch;
-    for (auto& [name, p] : nodes_.properties()) {
-      auto flat = p->to_flat();
-      bool dirty = false;
-      for (double& v : flat)
-        if (!std::isfinite(v)) {
-          v = 0.0;
-          dirty = true;
-        }
-      if (dirty) p->from_flat(flat);
+    // the guard checks its own last good state: a non-finite value there means the
+    // divergence began before the last check, and the file would hold garbage
+    std::string bad =
+        missing.empty() ? last_good_problem() : "node properties " + missing + " were not kept";
+    if (!bad.empty()) {
+      os << " The last good state (step " << good_step_ << ") is not usable (" << bad
+         << "); nothing was written.";
+    } else {
+      try {
+        write_checkpoint(guard.last_good_file);
+        os << " Last good state (step " << good_step_ << ") written to " << guard.last_good_file
+           << ".";
+      } catch (const std::exception& e) {
+        os << " (could not write the last good state: " << e.what() << ")";
+      }
     }
-    for (auto& [k, e] : energy_)
-      if (!std::isfinite(e)) e = 0.0;
-    try {
-      write_checkpoint(guard.last_good_file);
-      os << " Last good state (step " << good_step_ << ") written to " << guard.last_good_file
-         << ".";
-    } catch (const std::exception& e) {
-      os << " (could not write the last good state: " << e.what() << ")";
-    }
+    for (auto& d : dumps_) d->flush();
+  } else if (good_step_ >= 0) {
+    os << " No last good state was written: a node was added since the last check (step "
+       << good_step_ << "); guard{every = ...} checks more often.";
     for (auto& d : dumps_) d->flush();
   }
   throw InstabilityError(os.str());
@@ -73,12 +82,44 @@ void Simulation::fail(const std::string& what, long bad_step) {
 void Simulation::save_good_state() {
   good_x_ = nodes_.x;
   good_v_ = nodes_.v;
+  for (auto& [name, p] : nodes_.properties())
+    if (p->options().restart) p->keep();
+  for (Style* s : styles()) s->keep();
+  good_energy_ = energy_;
+  good_state_stale_ = false;
   good_q_.resize(coords_.size());
   good_qv_.resize(coords_.size());
   for (size_t k = 0; k < coords_.size(); ++k) {
     good_q_[k] = coords_[k]->q->values();
     good_qv_[k] = coords_[k]->v->values();
   }
+}
+
+// What is not finite in the state the guard returned to, or "" if all is (positions,
+// velocities, frames, saved node properties, the styles' saved state, energies).
+std::string Simulation::last_good_problem() const {
+  auto finite = [](const std::vector<double>& v) {
+    for (double x : v)
+      if (!std::isfinite(x)) return false;
+    return true;
+  };
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite())
+      return "node " + std::to_string(i + 1) + " position or velocity";
+  for (auto& c : coords_)
+    for (auto& q : c->q->values())
+      if (!q.allFinite()) return "frames " + c->name;
+  for (auto& [name, p] : nodes_.properties())
+    if (p->options().restart && !finite(p->to_flat())) return "node property " + name;
+  for (Style* s : styles()) {
+    StateMap st;
+    s->save_state(st);
+    for (auto& [key, v] : st)
+      if (!finite(v)) return "state '" + key + "' of " + s->id();
+  }
+  for (auto& [k, e] : energy_)
+    if (!std::isfinite(e)) return "energy " + k;
+  return "";
 }
 
 void Simulation::check_guard(long) {

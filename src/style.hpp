@@ -46,6 +46,17 @@ class Style {
   virtual void attach(Simulation&) {}
   virtual void save_state(StateMap&) const {}
   virtual void load_state(const StateMap&) {}
+  // The guard's last good state (src/simulation_guard.cpp): keep() records what save_state()
+  // writes, restore_kept() puts it back after diverged steps, so that a rollback and the
+  // last-good file hold no state of the bad steps. Styles whose state is large (pair lists)
+  // override both with direct copies.
+  virtual void keep() {
+    kept_.clear();
+    save_state(kept_);
+  }
+  virtual void restore_kept() {
+    if (!kept_.empty()) load_state(kept_);
+  }
   // Scalars this style offers to thermo as "<id>.<key>".
   virtual std::vector<std::string> value_keys() const { return {}; }
   virtual double value(const std::string& key) const;
@@ -56,6 +67,7 @@ class Style {
 
  private:
   std::string style_name_, id_;
+  StateMap kept_;
 };
 
 // Interactions along chains (stretching, bending, torsion, hysteresis).

@@ -223,6 +223,21 @@ class NodeEdgeContactPair : public PairStyle {
     save_measured(st, {double(contacts_), stiffness_.omega()});
     schedule_.save(st);
   }
+  // the guard's copy: the list as it was (its tails intact), rebuilt from the restored
+  // positions at the next evaluation with this history
+  void keep() override {
+    kept_list_ = list_;
+    kept_xi_ = xi_;
+    kept_contacts_ = contacts_;
+    kept_omega_ = stiffness_.omega();
+  }
+  void restore_kept() override {
+    list_ = kept_list_;
+    xi_ = kept_xi_;
+    contacts_ = kept_contacts_;
+    stiffness_.set_omega(kept_omega_);
+    need_build_ = true;
+  }
   void load_state(const StateMap& st) override {
     list_.clear();
     xi_.clear();
@@ -390,7 +405,11 @@ class NodeEdgeContactPair : public PairStyle {
   std::vector<Edge> edges_;
   std::vector<int> chain_of_, pos_in_chain_;
   std::vector<Entry> list_, old_;
-  std::vector<Vec3> xi_, old_xi_;  // stick spring (or last slip direction) of list_[k]
+  std::vector<Vec3> xi_, old_xi_;
+  std::vector<Entry> kept_list_;
+  std::vector<Vec3> kept_xi_;
+  int kept_contacts_ = 0;
+  double kept_omega_ = 0.0;  // stick spring (or last slip direction) of list_[k]
   std::vector<std::vector<Entry>> part_lists_;
   // pass 1's pairs for pass 2, per thread: list index, closest point, edge, separation
   struct Near {

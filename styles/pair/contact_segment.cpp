@@ -181,6 +181,18 @@ class SegmentContactPair : public PairStyle {
     save_measured(st, {double(contacts_), stiffness_.omega()});
     schedule_.save(st);
   }
+  // the guard's copy (see contact/node-edge)
+  void keep() override {
+    kept_list_ = list_;
+    kept_contacts_ = contacts_;
+    kept_omega_ = stiffness_.omega();
+  }
+  void restore_kept() override {
+    list_ = kept_list_;
+    contacts_ = kept_contacts_;
+    stiffness_.set_omega(kept_omega_);
+    need_build_ = true;
+  }
   void load_state(const StateMap& st) override {
     list_.clear();
     auto& h = st.at("history");
@@ -307,6 +319,9 @@ class SegmentContactPair : public PairStyle {
   std::vector<Vec3> mid_;
   std::vector<double> half_;  // half the length of each edge at the last build
   bool need_build_ = true, bound_ = false;
+  std::vector<Entry> kept_list_;
+  int kept_contacts_ = 0;
+  double kept_omega_ = 0.0;
   int contacts_ = 0;
   NodeStiffness stiffness_;
 };

@@ -196,6 +196,51 @@ TEST(Guard, LastGoodStateHoldsNoNaNAndTheSceneReturnsToIt) {
 }
 #endif
 
+// The last good state is the whole state of the good step: plastic curvatures (a node
+// property), the hysteresis bond's dissipated energy and the contact history (style state)
+// come back with the positions, in memory and in the last-good file. (They kept the values
+// of the diverged steps: plastic curvatures of 3.1 rad in a "step 0" state.)
+TEST(Guard, RollbackRestoresPlasticityAndStyleState) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.guard.last_good_file = "guard_test_plastic.h5";
+  sim.add_chain("w", wiggly_chain(40, 2, 4, 0.4), 1.0, false);
+  sim.add_bond("spring", P({{"k", 1000.0}}));
+  sim.add_bond("bend2d/hysteresis", P({{"k", 60.0}, {"yield_curvature", 0.05}}));
+  sim.add_pair("contact/node-edge", P({{"stiffness", 1e3}, {"mu_static", 0.5}}));
+  sim.set_integrator("verlet", P({{"dt", 0.002}}));
+  sim.run(RunOptions{200, 0, {}});
+  auto* kpl = sim.nodes().find<double>("bend.plastic_curvature");
+  ASSERT_TRUE(kpl);
+  const std::vector<double> kpl_good = kpl->values();
+  double most = 0.0;
+  for (double k : kpl_good) most = std::max(most, std::abs(k));
+  ASSERT_GT(most, 0.01);  // the wiggles yielded: there is plastic state to get wrong
+  const double lost_good = sim.find_style("bend2d/hysteresis")->value("dissipated");
+  ASSERT_GT(lost_good, 0.0);
+  const std::vector<Vec3> x_good = sim.nodes().x;
+  sim.set_integrator("verlet", P({{"dt", 0.5}}));  // far above the stable step
+  EXPECT_THROW(sim.run(RunOptions{1000, 0, {}}), InstabilityError);
+  EXPECT_EQ(sim.nodes().x, x_good);
+  EXPECT_EQ(sim.nodes().find<double>("bend.plastic_curvature")->values(), kpl_good);
+  EXPECT_EQ(sim.find_style("bend2d/hysteresis")->value("dissipated"), lost_good);
+#ifdef SLENDER_HAVE_HDF5
+  // the file holds the same state, all finite
+  Simulation back(2, 1);
+  back.verbose = false;
+  back.add_chain("w", wiggly_chain(40, 2, 4, 0.4), 1.0, false);
+  back.add_bond("spring", P({{"k", 1000.0}}));
+  back.add_bond("bend2d/hysteresis", P({{"k", 60.0}, {"yield_curvature", 0.05}}));
+  back.add_pair("contact/node-edge", P({{"stiffness", 1e3}, {"mu_static", 0.5}}));
+  back.set_integrator("verlet", P({{"dt", 0.002}}));
+  back.read_checkpoint("guard_test_plastic.h5");
+  EXPECT_EQ(back.nodes().x, x_good);
+  EXPECT_EQ(back.nodes().find<double>("bend.plastic_curvature")->values(), kpl_good);
+  EXPECT_EQ(back.find_style("bend2d/hysteresis")->value("dissipated"), lost_good);
+#endif
+  std::remove("guard_test_plastic.h5");
+}
+
 TEST(Guard, NodeLeavingEveryBoundingRegionStopsTheRun) {
   Simulation sim(2, 1);
   sim.verbose = false;

@@ -76,13 +76,7 @@ void Simulation::write_checkpoint(const std::string& path) {
       h5::write_doubles(g, "closed", {c.closed ? 1.0 : 0.0}, {1});
     }
     auto styles = h5::create_group(f, "styles");
-    for (auto& b : shells_) save_style(styles, *b);
-    for (auto& [k, g] : growths_) save_style(styles, *g);
-    for (auto& b : bonds_) save_style(styles, *b);
-    for (auto& p : pairs_) save_style(styles, *p);
-    for (auto& x : fixes_) save_style(styles, *x);
-    for (auto& x : computes_) save_style(styles, *x);
-    if (integrator_) save_style(styles, *integrator_);
+    for (Style* s : this->styles()) save_style(styles, *s);
     H5Fflush(f, H5F_SCOPE_GLOBAL);
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
@@ -151,13 +145,7 @@ void Simulation::read_checkpoint(const std::string& path) {
     c.rest_length = h5::read_doubles(g, "rest_length");
   }
   auto styles = h5::open_group(f, "styles");
-  for (auto& b : shells_) load_style(styles, *b);
-  for (auto& [k, g] : growths_) load_style(styles, *g);
-  for (auto& b : bonds_) load_style(styles, *b);
-  for (auto& p : pairs_) load_style(styles, *p);
-  for (auto& x : fixes_) load_style(styles, *x);
-  for (auto& x : computes_) load_style(styles, *x);
-  if (integrator_) load_style(styles, *integrator_);
+  for (Style* s : this->styles()) load_style(styles, *s);
   std::istringstream rng(h5::read_string(st, "rng"));
   rng >> rng_;
   step = static_cast<long>(sc[0]);

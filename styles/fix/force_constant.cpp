@@ -17,7 +17,12 @@ class ConstantForceFix : public FixStyle {
     return s;
   }
   ConstantForceFix(Simulation& sim, const ParamValues& p)
-      : group_(p.str("group")), force_(p.vec3("force")), rate_(p.vec3("rate")), t0_(sim.time) {
+      : group_(p.str("group")),
+        force_(p.vec3("force")),
+        rate_(p.vec3("rate")),
+        t0_(sim.time),
+        dim_(sim.dimension()) {
+    check_plane();
     nodes_ = sim.group(group_);
     for (int i : nodes_) ref_.push_back(sim.nodes().x[i]);
   }
@@ -50,6 +55,7 @@ class ConstantForceFix : public FixStyle {
     auto p = spec(style_name()).validate(merged);
     force_ = p.vec3("force");
     rate_ = p.vec3("rate");
+    check_plane();
   }
   void save_state(StateMap& st) const override {
     st["t0"] = {t0_};
@@ -79,9 +85,19 @@ class ConstantForceFix : public FixStyle {
   }
 
  private:
+  // a 2D scene moves in the xy plane: a z component would be dropped without a word (a load
+  // written {0, 0, -P} for "downwards" gave a tip deflection of 0)
+  void check_plane() const {
+    if (dim_ == 2 && (force_.z() != 0.0 || rate_.z() != 0.0))
+      throw InputError(
+          "fix style 'force/constant': force and rate have a z component in a 2D scene (dimension "
+          "= 2), "
+          "whose nodes move in the xy plane: give {fx, fy}");
+  }
   std::string group_;
   Vec3 force_, rate_;
   double t0_;
+  int dim_ = 3;
   std::vector<int> nodes_;
   std::vector<Vec3> ref_;
   Vec3 last_ = Vec3::Zero();

@@ -73,6 +73,19 @@ TEST(ConstantForceFix, EnergyIsMinusWorkAndRampsInTime) {
       sim.add_fix("x", "force/constant",
                   P({{"group", std::string("nope")}, {"force", std::vector<double>{1, 0}}})),
       InputError);
+  // a z component in a 2D scene would be dropped: refused, also through sim:modify; a 3-vector
+  // in the plane is fine
+  try {
+    sim.add_fix("down", "force/constant",
+                P({{"group", std::string("ends")}, {"force", std::vector<double>{0, 0, -1}}}));
+    ADD_FAILURE() << "a z load in 2D was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("z component in a 2D scene"), std::string::npos)
+        << e.what();
+  }
+  sim.add_fix("flat", "force/constant",
+              P({{"group", std::string("ends")}, {"force", std::vector<double>{0, -1, 0}}}));
+  EXPECT_THROW(sim.fix("flat").modify(P({{"rate", std::vector<double>{0, 0, 1}}})), InputError);
 }
 
 TEST(ClampFix, ClampedComponentsNeverMove) {

@@ -1,6 +1,7 @@
 -- Purpose: the thesis' classic crumpling scene (W2-1, MODELS.md §7.2): loop cascades
 -- near the wall with two-fold symmetry, run until the wire jams.
--- Expected run time: f = 10 (fast mode, -v fast=1): ~2 s; f = 50: ~1 min; f = 100: ~15 min on one
+-- Expected run time: f = 10 (fast mode, -v fast=1): ~2 s; f = 50: ~1 min; f = 100: ~7 min with -t 2
+-- (2.35 M adaptive Verlet steps), ~15 min on one
 -- core (3.2 M adaptive Verlet steps; 4.6 h and 73.7 M steps with the old Gear step).
 -- Thesis parameters: f = 100, kappa_theta = 0.04, mu_st = 5, s = 0.08 (feed speed).
 -- At f = 100 this feed is too fast for the span to buckle as a whole: the wire folds at the

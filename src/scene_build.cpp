@@ -1,5 +1,10 @@
 #include "scene_build.hpp"
 
+#ifdef SLENDER_HAVE_SHELL
+#include "shell/surface.hpp"
+#include "shell/trimesh.hpp"
+#endif
+
 #include <cmath>
 #include <random>
 
@@ -122,6 +127,87 @@ std::size_t add_group(Simulation& sim, const std::string& name, const RawParams&
   const std::size_t count = sel.size();
   sim.set_group(name, std::move(sel));
   return count;
+}
+
+ParamSpec mesh_spec() {
+  ParamSpec s("command", "mesh",
+              "sim:mesh{...}: a triangle mesh for shells, generated or read from OBJ/OFF, with "
+              "its ghost layer (groups <name>, <name>.boundary, <name>.ghost, <name>.row1)");
+  s.string("name", "surface name (also the node group of its real nodes)").required();
+  s.string("shape", "generated mesh").choices({"disc", "ring", "rectangle", "sphere"});
+  s.string("file", "read an OBJ or OFF file instead of generating a shape");
+  s.real("radius", "disc or sphere radius; outer radius of a ring").def(1.0).positive();
+  s.real("inner_radius", "inner radius of a ring").positive();
+  s.vector("size", "rectangle sides {lx, ly}").length(2, 2);
+  s.real("edge", "target edge length (disc default: 5 refinements of a hexagon)").positive();
+  s.real("refine_center",
+         "disc: radius of a core refined refine_levels more times (red-green, level k within "
+         "refine_center / 2^(k-1)), to resolve an e-cone's apex (MODELS.md §6.12)")
+      .def(0.0)
+      .nonnegative();
+  s.integer("refine_levels", "disc: extra refinement levels of the core (edge / 2^levels there)")
+      .def(0.0)
+      .min(0)
+      .max(6);
+  s.integer("refine", "extra global refinements at edge midpoints (spheres re-projected)")
+      .def(0.0)
+      .min(0)
+      .max(6);
+  s.vector("center", "translation applied to the mesh")
+      .def(std::vector<double>{0, 0, 0})
+      .length(3, 3);
+  s.real("noise", "seeded uniform displacement amplitude along the normal (MODELS.md §6.12)")
+      .def(0.0)
+      .nonnegative();
+  s.string("write", "write the control mesh (without ghosts) to this OBJ/OFF file");
+  return s;
+}
+
+std::pair<int, int> add_mesh(Simulation& sim, const RawParams& raw) {
+#ifdef SLENDER_HAVE_SHELL
+  auto p = mesh_spec().validate(raw);
+  shell::TriMesh m;
+  const double R = p.real("radius");
+  auto levels = [](double size, double edge) {
+    return std::max(0, static_cast<int>(std::ceil(std::log2(size / edge) - 1e-9)));
+  };
+  if (p.has("file") == p.has("shape")) throw InputError("mesh: give exactly one of shape or file");
+  if (p.has("file")) {
+    m = shell::read_mesh(p.str("file"));
+  } else if (p.str("shape") == "disc") {
+    m = shell::make_disc(R, p.has("edge") ? levels(R, p.real("edge")) : 5, p.real("refine_center"),
+                         static_cast<int>(p.integer("refine_levels")));
+  } else if (p.str("shape") == "ring") {
+    if (!p.has("inner_radius")) throw InputError("mesh: a ring needs inner_radius");
+    const double ri = p.real("inner_radius");
+    const double e = p.has("edge") ? p.real("edge") : R / 16;
+    m = shell::make_ring(ri, R, std::max(1, static_cast<int>(std::ceil((R - ri) / e))),
+                         std::max(6, static_cast<int>(std::ceil(2 * M_PI * R / e))));
+  } else if (p.str("shape") == "rectangle") {
+    if (!p.has("size")) throw InputError("mesh: a rectangle needs size = {lx, ly}");
+    auto sz = p.vec("size");
+    const double e = p.has("edge") ? p.real("edge") : std::min(sz[0], sz[1]) / 8;
+    m = shell::make_rectangle(sz[0], sz[1], std::max(2, static_cast<int>(std::ceil(sz[0] / e))),
+                              std::max(2, static_cast<int>(std::ceil(sz[1] / e))));
+  } else {
+    m = shell::make_sphere(R, p.has("edge") ? std::max(1, levels(1.05 * R, p.real("edge"))) : 3);
+  }
+  for (long r = 0; r < p.integer("refine"); ++r) {
+    shell::refine(m);
+    if (p.has("shape") && p.str("shape") == "sphere")
+      for (Vec3& x : m.x) x *= R / x.norm();
+  }
+  const Vec3 c = p.vec3("center");
+  for (Vec3& x : m.x) x += c;
+  if (p.has("write")) shell::write_mesh(p.str("write"), m);
+  auto& s = shell::add_surface(sim, p.str("name"), m, p.real("noise"));
+  return {s.mesh->n_real_nodes, s.mesh->n_real_tris};
+#else
+  (void)sim;
+  (void)raw;
+  throw InputError(
+      "mesh: this slender was built without the shell family (-DSLENDER_WITH_SHELL=ON)");
+#endif
 }
 
 int node_index(long i, std::size_t n, const std::string& what) {

@@ -617,3 +617,21 @@ TEST(SceneBuild, WiresAndGroupsFromParameters) {
       },
       "node index 6 out of range 1..5");
 }
+
+#ifdef SLENDER_HAVE_SHELL
+// sim:mesh{...} through the C++ API: a generated disc with its ghost layer and groups.
+TEST(SceneBuild, MeshFromParameters) {
+  Simulation sim(3, 1);
+  sim.verbose = false;
+  const auto [nodes, tris] = add_mesh(sim, P({{"name", std::string("s")},
+                                              {"shape", std::string("disc")},
+                                              {"radius", 2.0},
+                                              {"edge", 0.5}}));
+  EXPECT_GT(nodes, 20);
+  EXPECT_GT(tris, nodes);  // a disc triangulation: about twice as many triangles as nodes
+  EXPECT_EQ(sim.group("s").size(), static_cast<std::size_t>(nodes));
+  EXPECT_TRUE(sim.has_group("s.boundary"));
+  EXPECT_GT(sim.nodes().size(), static_cast<std::size_t>(nodes));            // the ghosts
+  EXPECT_THROW(add_mesh(sim, P({{"name", std::string("t")}})), InputError);  // no shape, no file
+}
+#endif

@@ -604,6 +604,10 @@ int l_set_position(lua_State* L) {
   Value v = to_value(L, 3, "position");
   auto* d = std::get_if<std::vector<double>>(&v);
   if (!d || d->size() < 2 || d->size() > 3) throw InputError("set_position: expected {x, y[, z]}");
+  for (double x : *d)
+    if (!std::isfinite(x))
+      throw InputError("set_position: node " + std::to_string(i + 1) +
+                       " would get a non-finite coordinate (" + std::to_string(x) + ")");
   for (size_t c = 0; c < d->size(); ++c) sim.nodes().x[i][static_cast<long>(c)] = (*d)[c];
   if (sim.dimension() == 2) sim.nodes().x[i].z() = 0;
   sim.forces_valid = false;

@@ -48,6 +48,21 @@ class NodeEdgeContactPair : public PairStyle {
 
   void setup(Simulation& sim) override {
     chains_ = select_chains(sim, names_);
+    // the first edge not excluded along a straight wire at rest starts exclude + 1 rest
+    // lengths away: a diameter that reaches it puts the wire in contact with itself before
+    // anything moves (the guard would then blame the run, not the deck)
+    double lmin = 1e300;
+    for (auto* c : chains_)
+      if (c->n_edges() > exclude_ + 1)  // a chain that has such a pair at all
+        for (double l : c->rest_length) lmin = std::min(lmin, l);
+    if (lmin < 1e300 && d_ >= (exclude_ + 1) * lmin)
+      throw InputError("pair style 'contact/node-edge': diameter " + std::to_string(d_) +
+                       " reaches past the " + std::to_string(exclude_) +
+                       " excluded neighbours along a chain (shortest rest length " +
+                       std::to_string(lmin) +
+                       "): the wire touches itself at rest; raise exclude "
+                       "to at least " +
+                       std::to_string(static_cast<int>(d_ / lmin)) + " or space the nodes closer");
     edges_.clear();
     const size_t n = sim.nodes().size();
     chain_of_.assign(n, -1);

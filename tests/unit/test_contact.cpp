@@ -376,3 +376,28 @@ TEST(VelocityVerletIntegrator, AdaptiveStepFollowsTheMeasuredContacts) {
   EXPECT_NEAR(sim.dt, 0.5 * 2.0 / sim.omega_now(), 1e-3 * sim.dt);
   EXPECT_TRUE(sim.nodes().x[0].allFinite());
 }
+
+// A diameter that reaches past the excluded neighbours puts a straight wire at rest in
+// contact with itself: refused at setup with what to change, instead of a guard stop later.
+TEST(NodeEdgeContactPair, DiameterReachingPastTheExclusionIsRefused) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 20; ++i) pts.emplace_back(0.3 * i, 0, 0);
+  sim.add_chain("w", pts, 1.0, false);
+  sim.add_pair("contact/node-edge", P({{"diameter", 1.0}, {"stiffness", 1e3}}));
+  try {
+    sim.compute_forces();
+    ADD_FAILURE() << "a wire touching itself at rest was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("touches itself at rest; raise exclude to at least 3"),
+              std::string::npos)
+        << e.what();
+  }
+  Simulation ok(2, 1);
+  ok.verbose = false;
+  ok.add_chain("w", pts, 1.0, false);
+  ok.add_pair("contact/node-edge", P({{"diameter", 1.0}, {"stiffness", 1e3}, {"exclude", 3.0}}));
+  ok.compute_forces();
+  EXPECT_EQ(ok.pairs()[0]->value("contacts"), 0.0);  // the advice holds: nothing touches
+}

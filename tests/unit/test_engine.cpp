@@ -207,7 +207,7 @@ TEST(Guard, RollbackRestoresPlasticityAndStyleState) {
   sim.add_chain("w", wiggly_chain(40, 2, 4, 0.4), 1.0, false);
   sim.add_bond("spring", P({{"k", 1000.0}}));
   sim.add_bond("bend2d/hysteresis", P({{"k", 60.0}, {"yield_curvature", 0.05}}));
-  sim.add_pair("contact/node-edge", P({{"stiffness", 1e3}, {"mu_static", 0.5}}));
+  sim.add_pair("contact/node-edge", P({{"diameter", 0.5}, {"stiffness", 1e3}, {"mu_static", 0.5}}));
   sim.set_integrator("verlet", P({{"dt", 0.002}}));
   sim.run(RunOptions{200, 0, {}});
   auto* kpl = sim.nodes().find<double>("bend.plastic_curvature");
@@ -231,7 +231,8 @@ TEST(Guard, RollbackRestoresPlasticityAndStyleState) {
   back.add_chain("w", wiggly_chain(40, 2, 4, 0.4), 1.0, false);
   back.add_bond("spring", P({{"k", 1000.0}}));
   back.add_bond("bend2d/hysteresis", P({{"k", 60.0}, {"yield_curvature", 0.05}}));
-  back.add_pair("contact/node-edge", P({{"stiffness", 1e3}, {"mu_static", 0.5}}));
+  back.add_pair("contact/node-edge",
+                P({{"diameter", 0.5}, {"stiffness", 1e3}, {"mu_static", 0.5}}));
   back.set_integrator("verlet", P({{"dt", 0.002}}));
   back.read_checkpoint("guard_test_plastic.h5");
   EXPECT_EQ(back.nodes().x, x_good);

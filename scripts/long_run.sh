@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs that take longer than one sitting (the R = 20 packings, the f = 100 crumpling
-# deck) continue across machines: runs/<name>/run.conf says which deck with which
+# deck) continue across sittings: runs/<name>/run.conf says which deck with which
 # variables, and runs/<name>/ keeps the last checkpoint, the thermo CSV and the
-# trajectory segments, so that a fresh clone can pick the run up where it stopped.
+# trajectory segments. Only the configuration, CSV and JSON results are tracked by git:
+# checkpoints and trajectories (HDF5) are run data and stay on the machine.
 #
 #   scripts/long_run.sh start <name>   run (or continue) it in $SLENDER_RUNS/<name>
 #                                      (default /tmp/slender-runs); foreground, so

@@ -17,9 +17,8 @@ int main() {
   Simulation sim(2, 1);
   sim.verbose = false;
   // the deck's sim:wire{...}, from the same parameter declarations (src/scene_build.hpp)
-  add_wire(sim, RawParams{{"name", std::string("wire")},
-                          {"nodes", double(n)},
-                          {"spacing", L / (n - 1)}});
+  add_wire(sim, RawParams{
+                    {"name", std::string("wire")}, {"nodes", double(n)}, {"spacing", L / (n - 1)}});
   sim.add_bond("spring", RawParams{{"k", 1000.0}});
   sim.add_bond("bend2d", RawParams{{"k", k_bend}});
   sim.set_group("root", {0});

@@ -28,9 +28,9 @@ void Simulation::fail(const std::string& what, long bad_step) {
          << dt * 0.5 << ") may still help.";
   }
   // Return to the last good state and dump it, so nothing is lost and the user can
-  // inspect it or continue with a smaller dt. Forces and history arrays (e.g. Gear
-  // derivatives) of the bad steps are not part of it: they are reset, never written
-  // as NaN.
+  // inspect it or continue with a smaller dt. The forces of the bad steps are reset; node
+  // properties (Gear derivatives too) and the styles' state come back as they were, and
+  // integrators restart their history (state_epoch).
   if (good_step_ >= 0 && !good_state_stale_ && good_x_.size() == nodes_.size()) {
     nodes_.x = good_x_;
     nodes_.v = good_v_;

@@ -634,5 +634,21 @@ TEST(SceneBuild, MeshFromParameters) {
   EXPECT_TRUE(sim.has_group("s.boundary"));
   EXPECT_GT(sim.nodes().size(), static_cast<std::size_t>(nodes));            // the ghosts
   EXPECT_THROW(add_mesh(sim, P({{"name", std::string("t")}})), InputError);  // no shape, no file
+  // an edge the generator cannot reach names edge (not an internal refinement count)
+  try {
+    add_mesh(sim, P({{"name", std::string("u")}, {"shape", std::string("disc")}, {"edge", 1e-5}}));
+    ADD_FAILURE() << "edge = 1e-5 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find(
+            "mesh: edge = 0.000010 on a disc of radius 1.000000 needs 17 refinements, at most 9"),
+        std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(add_mesh(sim, P({{"name", std::string("r")},
+                                {"shape", std::string("rectangle")},
+                                {"size", std::vector<double>{10, 10}},
+                                {"edge", 1e-3}})),
+               InputError);
 }
 #endif

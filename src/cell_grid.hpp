@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <vector>
 
+#include "context.hpp"
 #include "nodes.hpp"
 #include "params.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -27,32 +27,27 @@ class RebuildSchedule {
   explicit RebuildSchedule(const ParamValues& p)
       : skin_(p.real("skin")), every_(p.integer("rebuild_every")) {}
   double skin() const { return skin_; }
-  bool due(const Simulation& sim) const {
-    if (every_ > 0) return sim.step - last_ >= every_;
-    const auto& x = sim.nodes().x;
-    if (x_.size() != x.size()) return true;
-    const double lim = 0.25 * skin_ * skin_;  // (skin/2)^2
-    for (std::size_t i = 0; i < x_.size(); ++i)
-      if ((x[i] - x_[i]).squaredNorm() > lim) return true;
-    return false;
+  // Whether the list must be rebuilt now; the scene's neighbour service decides for all
+  // lists at once (src/neighbors.hpp). `force`: this list must be rebuilt (its chains were
+  // re-bound, a rollback): every list is.
+  bool due(Context& sim, bool force) {
+    auto& service = sim.neighbors();
+    if (handle_ < 0) handle_ = service.request(this, skin_, every_);
+    if (force) service.invalidate();
+    return service.due(handle_, sim.nodes().x, sim.step());
   }
-  void built(const Simulation& sim) {
-    x_ = sim.nodes().x;
-    last_ = sim.step;
+  void built(Context& sim) {
+    sim.neighbors().built(handle_, sim.step());
     builds_ += 1;
   }
   double builds() const { return builds_; }
-  void save(StateMap& st) const { st["counters"] = {builds_, static_cast<double>(last_)}; }
-  void load(const StateMap& st) {
-    builds_ = st.at("counters")[0];
-    last_ = static_cast<long>(st.at("counters")[1]);
-  }
+  void save(StateMap& st) const { st["counters"] = {builds_, 0.0}; }
+  void load(const StateMap& st) { builds_ = st.at("counters")[0]; }
 
  private:
   double skin_;
   long every_;
-  std::vector<Vec3> x_;
-  long last_ = 0;
+  int handle_ = -1;
   double builds_ = 0;
 };
 

@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
-#include "simulation.hpp"
+#include "context.hpp"
 
 namespace slender {
 
 // The chains named in `names`, or every chain of the scene when `names` is empty.
-inline std::vector<const Chain*> select_chains(const Simulation& sim,
-                                               const std::vector<std::string>& names) {
+template <class Host>  // a Context or a Simulation
+std::vector<const Chain*> select_chains(const Host& sim, const std::vector<std::string>& names) {
   std::vector<const Chain*> out;
   auto& topo = sim.topology();
   for (auto& c : topo.chains) {
@@ -28,7 +28,8 @@ inline std::vector<const Chain*> select_chains(const Simulation& sim,
   return out;
 }
 
-inline double min_mass(const Simulation& sim, const std::vector<const Chain*>& chains) {
+template <class Host>
+double min_mass(const Host& sim, const std::vector<const Chain*>& chains) {
   double m = 1e300;
   for (auto* c : chains)
     for (int i : c->nodes) m = std::min(m, sim.nodes().mass[i]);
@@ -50,24 +51,24 @@ class ChainBondStyle : public BondStyle {
     s.add("chains", ParamType::StringList, "chains it acts on (default: all)")
         .def(std::vector<std::string>{});
   }
-  ChainBondStyle(Simulation& sim, const ParamValues& p) : names_(p.strings("chains")) {
+  ChainBondStyle(Context& sim, const ParamValues& p) : names_(p.strings("chains")) {
     select_chains(sim, names_);
   }
-  void setup(Simulation& sim) override { chains_ = select_chains(sim, names_); }
+  void setup(Context& sim) override { chains_ = select_chains(sim, names_); }
 
  protected:
   // The bound chains; binds on first use outside a run (a direct compute_forces).
-  const std::vector<const Chain*>& chains(Simulation& sim) {
+  const std::vector<const Chain*>& chains(Context& sim) {
     if (chains_.empty()) setup(sim);
     return chains_;
   }
   // Highest mode of a uniform chain of springs k: omega^2 = 4k / m.
-  double stretch_frequency(const Simulation& sim, double k) const {
+  double stretch_frequency(const Context& sim, double k) const {
     auto ch = select_chains(sim, names_);
     return ch.empty() ? 0.0 : 2.0 * std::sqrt(k / min_mass(sim, ch));
   }
   // Zig-zag mode of bending springs k2: zeta = 4u/l, omega^2 = 16 k2 / (m l^2).
-  double bend_frequency(const Simulation& sim, double k) const {
+  double bend_frequency(const Context& sim, double k) const {
     auto ch = select_chains(sim, names_);
     return ch.empty() ? 0.0 : 4.0 * std::sqrt(k / min_mass(sim, ch)) / min_rest(ch);
   }

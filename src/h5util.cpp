@@ -1,6 +1,11 @@
 #include "h5util.hpp"
-#include <cstdio>
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 namespace slender::h5 {
@@ -15,17 +20,59 @@ Handle checked(hid_t id, herr_t (*closer)(hid_t), const std::string& what) {
 }
 }  // namespace
 
+// Why a file cannot be created, in the user's words (the library's own trace is a page of
+// internals): a missing or read-only folder, a path that is a folder, or the system's reason.
+static std::string why_not_writable(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::exists(dir, ec)) return "the folder '" + dir.string() + "' does not exist";
+  if (!fs::is_directory(dir, ec)) return "'" + dir.string() + "' is not a folder";
+  if (fs::is_directory(p, ec)) return "a folder of that name exists";
+  if (::access(dir.c_str(), W_OK) != 0)
+    return "the folder '" + dir.string() + "' is not writable (" + std::strerror(errno) + ")";
+  if (fs::exists(p, ec) && ::access(path.c_str(), W_OK) != 0)
+    return std::string("the file exists and is not writable (") + std::strerror(errno) + ")";
+  return "the file may be open in another program (HDF5 locks files it writes)";
+}
+
+// The library prints a trace of its internals for every failed call; our messages say what
+// failed and why, once, so its printing is turned off when slender first touches a file.
+static void quiet_library() {
+  static const bool once = (H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr), true);
+  (void)once;
+}
+
 Handle create_file(const std::string& path) {
-  return checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-                 "cannot create file '" + path + "'");
+  quiet_library();
+  hid_t f = -1;
+  H5E_BEGIN_TRY {
+    f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  }
+  H5E_END_TRY;
+  if (f < 0)
+    throw std::runtime_error("cannot create HDF5 file '" + path + "': " + why_not_writable(path));
+  return Handle(f, H5Fclose);
 }
 Handle open_file(const std::string& path, bool writable) {
+  quiet_library();
   H5E_BEGIN_TRY {
     hid_t f = H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
     if (f >= 0) return Handle(f, H5Fclose);
   }
   H5E_END_TRY;
-  throw std::runtime_error("cannot open HDF5 file '" + path + "'");
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::string why = "not an HDF5 file, or damaged";
+  if (!fs::exists(path, ec))
+    why = "no such file";
+  else if (fs::is_directory(path, ec))
+    why = "it is a folder";
+  else if (::access(path.c_str(), writable ? (R_OK | W_OK) : R_OK) != 0)
+    why = std::string(writable ? "not readable and writable" : "not readable") + " (" +
+          std::strerror(errno) + ")";
+  throw std::runtime_error("cannot open HDF5 file '" + path + "': " + why);
 }
 Handle create_group(hid_t parent, const std::string& name) {
   return checked(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,

@@ -37,6 +37,19 @@ class Catalog {
   }
 };
 
+class Context;
+// The scene's Context (defined in src/simulation.cpp): what force styles are built with.
+Context& context_of(Simulation& sim);
+// What a style of family Base is constructed with: the Context for force styles, the
+// Simulation for integrators, computes and dumps (src/style.hpp, kSeesContext).
+template <class Base>
+decltype(auto) host_for(Simulation& sim) {
+  if constexpr (Base::kSeesContext)
+    return context_of(sim);
+  else
+    return (sim);
+}
+
 template <class Base>
 class Registry {
  public:
@@ -87,13 +100,15 @@ class Registry {
 #define SLENDER_CONCAT_INNER(a, b) a##b
 #define SLENDER_CONCAT(a, b) SLENDER_CONCAT_INNER(a, b)
 #ifndef SLENDER_PLUGIN
-#define SLENDER_REGISTER_STYLE(Base, NAME, Class)                                    \
-  namespace {                                                                        \
-  [[maybe_unused]] const bool SLENDER_CONCAT(slender_registered_, __LINE__) =        \
-      ::slender::Registry<Base>::add(                                                \
-          NAME, [] { return Class::spec(NAME); },                                    \
-          [](::slender::Simulation& sim, const ::slender::ParamValues& p)            \
-              -> std::unique_ptr<Base> { return std::make_unique<Class>(sim, p); }); \
+#define SLENDER_REGISTER_STYLE(Base, NAME, Class)                              \
+  namespace {                                                                  \
+  [[maybe_unused]] const bool SLENDER_CONCAT(slender_registered_, __LINE__) =  \
+      ::slender::Registry<Base>::add(                                          \
+          NAME, [] { return Class::spec(NAME); },                              \
+          [](::slender::Simulation& sim,                                       \
+             const ::slender::ParamValues& p) -> std::unique_ptr<Base> {       \
+            return std::make_unique<Class>(::slender::host_for<Base>(sim), p); \
+          });                                                                  \
   }
 #define SLENDER_PLUGIN_ENTRY()
 #else
@@ -112,7 +127,7 @@ inline std::vector<std::function<void()> >& plugin_pending() {
     ::slender::Registry<Base>::add(                                                                \
         NAME, [] { return Class::spec(NAME); },                                                    \
         [](::slender::Simulation& sim, const ::slender::ParamValues& p) -> std::unique_ptr<Base> { \
-          return std::make_unique<Class>(sim, p);                                                  \
+          return std::make_unique<Class>(::slender::host_for<Base>(sim), p);                       \
         });                                                                                        \
   }),                                                                                              \
                                         true);                                                     \

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "simulation.hpp"
+#include "context.hpp"
 
 namespace slender {
 
@@ -30,13 +30,14 @@ void Schedule::build(const std::vector<ShellStyle*>& shells, const std::vector<B
 
 void Schedule::forces(Simulation& sim, std::map<std::string, double>& energy) const {
   double ext = 0.0;
+  Context& ctx = sim.context();
   for (const Call& c : calls_) {
     if (c.stage == Stage::kForce) {
-      if (c.shell) c.shell->compute(sim);
-      if (c.bond) energy[c.bond->energy_category()] += c.bond->compute(sim);
-      if (c.pair) energy["contact"] += c.pair->compute(sim);
+      if (c.shell) c.shell->compute(ctx);
+      if (c.bond) energy[c.bond->energy_category()] += c.bond->compute(ctx);
+      if (c.pair) energy["contact"] += c.pair->compute(ctx);
     } else if (c.stage == Stage::kPostForce) {
-      ext += c.fix->post_force(sim);
+      ext += c.fix->post_force(ctx);
     }
   }
   energy["external"] += ext;
@@ -44,7 +45,7 @@ void Schedule::forces(Simulation& sim, std::map<std::string, double>& energy) co
 
 void Schedule::end_of_step(Simulation& sim) const {
   for (const Call& c : calls_)
-    if (c.stage == Stage::kEndOfStep) c.fix->end_of_step(sim);
+    if (c.stage == Stage::kEndOfStep) c.fix->end_of_step(sim.context());
 }
 
 std::vector<const FixStyle*> Schedule::post_force_fixes() const {

@@ -1,4 +1,5 @@
 #include "simulation.hpp"
+#include "context.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -19,9 +20,13 @@ void Style::modify(const RawParams&) {
 }
 
 Simulation::Simulation(int dimension, std::uint64_t seed)
-    : dim_(dimension), seed_(seed), rng_(seed) {
+    : dim_(dimension), context_(std::make_unique<Context>(*this)), seed_(seed), rng_(seed) {
   if (dimension != 2 && dimension != 3)
     throw InputError("dimension must be 2 or 3, got " + std::to_string(dimension));
+}
+
+Context& context_of(Simulation& sim) {
+  return sim.context();
 }
 Simulation::~Simulation() = default;
 
@@ -142,7 +147,7 @@ std::string unique_id(const std::vector<std::unique_ptr<T>>& list, const std::st
 BondStyle& Simulation::add_bond(const std::string& style, const RawParams& p) {
   auto b = Registry<BondStyle>::create(style, *this, p);
   b->set_id(unique_id(bonds_, style));
-  b->attach(*this);
+  b->attach(*context_);
   bonds_.push_back(std::move(b));
   forces_valid = false;
   schedule_dirty_ = true;
@@ -151,7 +156,7 @@ BondStyle& Simulation::add_bond(const std::string& style, const RawParams& p) {
 PairStyle& Simulation::add_pair(const std::string& style, const RawParams& p) {
   auto b = Registry<PairStyle>::create(style, *this, p);
   b->set_id(unique_id(pairs_, style));
-  b->attach(*this);
+  b->attach(*context_);
   pairs_.push_back(std::move(b));
   forces_valid = false;
   schedule_dirty_ = true;
@@ -160,7 +165,7 @@ PairStyle& Simulation::add_pair(const std::string& style, const RawParams& p) {
 ShellStyle& Simulation::add_shell(const std::string& style, const RawParams& p) {
   auto b = Registry<ShellStyle>::create(style, *this, p);
   b->set_id(unique_id(shells_, style));
-  b->attach(*this);
+  b->attach(*context_);
   shells_.push_back(std::move(b));
   forces_valid = false;
   schedule_dirty_ = true;
@@ -171,7 +176,7 @@ GrowthStyle& Simulation::add_growth(const std::string& id, const std::string& st
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto g = Registry<GrowthStyle>::create(style, *this, p);
   g->set_id(id);
-  g->attach(*this);
+  g->attach(*context_);
   auto& ref = *g;
   growths_[id] = std::move(g);
   forces_valid = false;
@@ -204,7 +209,7 @@ FixStyle& Simulation::add_fix(const std::string& id, const std::string& style, c
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto f = Registry<FixStyle>::create(style, *this, p);
   f->set_id(id);
-  f->attach(*this);
+  f->attach(*context_);
   fixes_.push_back(std::move(f));
   forces_valid = false;
   schedule_dirty_ = true;
@@ -213,7 +218,7 @@ FixStyle& Simulation::add_fix(const std::string& id, const std::string& style, c
 void Simulation::remove_fix(const std::string& id) {
   for (auto it = fixes_.begin(); it != fixes_.end(); ++it)
     if ((*it)->id() == id) {
-      (*it)->detach(*this);
+      (*it)->detach(*context_);
       fixes_.erase(it);
       forces_valid = false;
       schedule_dirty_ = true;
@@ -231,7 +236,7 @@ ComputeStyle& Simulation::add_compute(const std::string& id, const std::string& 
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto c = Registry<ComputeStyle>::create(style, *this, p);
   c->set_id(id);
-  c->attach(*this);
+  c->attach(*context_);
   computes_.push_back(std::move(c));
   return *computes_.back();
 }
@@ -245,7 +250,7 @@ DumpStyle& Simulation::add_dump(const std::string& id, const std::string& style,
   if (find_style(id)) throw InputError("the id '" + id + "' is already used");
   auto d = Registry<DumpStyle>::create(style, *this, p);
   d->set_id(id);
-  d->attach(*this);
+  d->attach(*context_);
   dumps_.push_back(std::move(d));
   return *dumps_.back();
 }
@@ -258,12 +263,12 @@ IntegratorStyle& Simulation::set_integrator(const std::string& style, const RawP
 // ---------------------------------------------------------------- forces
 
 void Simulation::build_schedule() {
-  for (auto& s : shells_) s->setup(*this);
-  for (auto& b : bonds_) b->setup(*this);
-  for (auto& p : pairs_) p->setup(*this);
+  for (auto& s : shells_) s->setup(*context_);
+  for (auto& b : bonds_) b->setup(*context_);
+  for (auto& p : pairs_) p->setup(*context_);
   for (auto& f : fixes_)
-    if (f->stages() & kSetup) f->setup(*this);
-  dof_mask_ = nodes_.find<int>("dof_mask");
+    if (f->stages() & kSetup) f->setup(*context_);
+  dof_mask_ = nodes_.find<int>(kHeldComponents);
   auto raw = [](const auto& v) {
     std::vector<typename std::remove_reference_t<decltype(v)>::value_type::pointer> out;
     for (auto& p : v) out.push_back(p.get());
@@ -301,6 +306,7 @@ Coordinates& Simulation::coordinates(const std::string& name) {
 
 void Simulation::compute_forces() {
   if (schedule_dirty_) build_schedule();
+  neighbors_.begin_evaluation();
   for (auto& f : nodes_.f) f.setZero();
   for (auto& c : coords_)
     for (auto& f : c->f->values()) f.setZero();
@@ -374,19 +380,21 @@ double Simulation::omega_max(std::string* who) const {
       if (who) *who = name;
     }
   };
-  for (auto& s : shells_) take(s->max_frequency(*this), "shell " + s->id());
-  for (auto& b : bonds_) take(b->max_frequency(*this), "bond " + b->id());
-  for (auto& p : pairs_) take(p->max_frequency(*this), "pair " + p->id());
-  for (auto& f : fixes_) take(f->max_frequency(*this), "fix " + f->id());
+  for (auto& s : shells_) take(s->max_frequency(*context_), "shell " + s->id());
+  for (auto& b : bonds_) take(b->max_frequency(*context_), "bond " + b->id());
+  for (auto& p : pairs_) take(p->max_frequency(*context_), "pair " + p->id());
+  for (auto& f : fixes_) take(f->max_frequency(*context_), "fix " + f->id());
   return std::sqrt(w2);
 }
 void Simulation::cache_frequencies() {
   omega2_fixed_ = 0.0;
   measuring_.clear();
-  for (auto& sh : shells_) omega2_fixed_ += std::pow(sh->max_frequency(*this), 2);
-  for (auto& b : bonds_) omega2_fixed_ += std::pow(b->max_frequency(*this), 2);
-  for (auto& p : pairs_) measuring_.push_back({p.get(), p.get(), nullptr, p->max_frequency(*this)});
-  for (auto& f : fixes_) measuring_.push_back({f.get(), nullptr, f.get(), f->max_frequency(*this)});
+  for (auto& sh : shells_) omega2_fixed_ += std::pow(sh->max_frequency(*context_), 2);
+  for (auto& b : bonds_) omega2_fixed_ += std::pow(b->max_frequency(*context_), 2);
+  for (auto& p : pairs_)
+    measuring_.push_back({p.get(), p.get(), nullptr, p->max_frequency(*context_)});
+  for (auto& f : fixes_)
+    measuring_.push_back({f.get(), nullptr, f.get(), f->max_frequency(*context_)});
 }
 
 double Simulation::omega_now(std::string* who) const {
@@ -499,8 +507,9 @@ void Simulation::setup_run() {
     // every term's nominal highest frequency: which one limits the step
     std::printf("\n  omega by term:");
     for (auto& sh : shells_)
-      std::printf(" shell %s %.4g;", sh->id().c_str(), sh->max_frequency(*this));
-    for (auto& b : bonds_) std::printf(" bond %s %.4g;", b->id().c_str(), b->max_frequency(*this));
+      std::printf(" shell %s %.4g;", sh->id().c_str(), sh->max_frequency(*context_));
+    for (auto& b : bonds_)
+      std::printf(" bond %s %.4g;", b->id().c_str(), b->max_frequency(*context_));
     for (const auto& m : measuring_)
       if (m.nominal > 0) std::printf(" %s %.4g;", m.style->id().c_str(), m.nominal);
     std::printf("\n  schedule [priority]:\n");

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cadence.hpp"
+#include "neighbors.hpp"
 #include "nodes.hpp"
 #include "params.hpp"
 #include "schedule.hpp"
@@ -48,6 +49,8 @@ struct GuardOptions {
 // (injection channels, shell ghosts and clamped rows) hold all three.
 inline constexpr int kMaskX = 1, kMaskY = 2, kMaskZ = 4;
 inline constexpr int kMaskAll = kMaskX | kMaskY | kMaskZ;
+// The node property holding those bits (Context::held_components()).
+inline constexpr const char* kHeldComponents = "dof_mask";
 
 struct Coordinates {
   std::string name;
@@ -80,6 +83,8 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   int dimension() const { return dim_; }
+  // What the force styles see of this scene (src/context.hpp).
+  Context& context() { return *context_; }
   NodeStore& nodes() { return nodes_; }
   const NodeStore& nodes() const { return nodes_; }
   Topology& topology() { return topo_; }
@@ -90,6 +95,9 @@ class Simulation {
   // 1: serial). A run is bit-identical to itself for the same thread count.
   int threads() const { return threads_; }
   void set_threads(int n);
+  // When the contact pair lists are rebuilt, decided once per evaluation (neighbors.hpp).
+  NeighborService& neighbors() { return neighbors_; }
+  const NeighborService& neighbors() const { return neighbors_; }
   // Per-thread force buffers the kernels share (see threads.hpp).
   ForceScratch& force_scratch() { return scratch_; }
   // parallel_forces() onto the node forces with this simulation's threads.
@@ -230,10 +238,12 @@ class Simulation {
   void fail(const std::string& what, long bad_step);
 
   int dim_;
+  std::unique_ptr<Context> context_;
   std::uint64_t seed_;
   std::mt19937_64 rng_;
   int threads_ = 1;
   ForceScratch scratch_;
+  NeighborService neighbors_;
   ChainHalos chain_halos_;
   NodeStore nodes_;
   Topology topo_;

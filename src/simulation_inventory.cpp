@@ -60,7 +60,10 @@ std::string Simulation::inventory_json() const {
       o << ", \"pairs\": " << pairs_[i]->value("pairs");
     o << "}";
   }
-  o << "], \"chains\": " << topo_.chains.size() << ", \"surfaces\": " << topo_.surfaces.size()
+  // the one rebuild decision for all lists (none in a scene without contacts)
+  o << "], \"neighbor_service\": {\"requests\": " << neighbors_.requests()
+    << ", \"rebuilds\": " << neighbors_.rebuilds() << ", \"scans\": " << neighbors_.scans()
+    << "}, \"chains\": " << topo_.chains.size() << ", \"surfaces\": " << topo_.surfaces.size()
     << ", \"node_bytes\": " << total << "}";
   return o.str();
 }

@@ -40,7 +40,7 @@ StiffnessResult lowest_stiffness(Simulation& sim, double eps) {
   const int dim = sim.dimension();
   sim.compute_forces();  // binds the styles and their frames
   std::vector<Dof> dofs;
-  const auto* mask = n.find<int>("dof_mask");  // components held by clamps
+  const auto* mask = n.find<int>(kHeldComponents);  // components held by clamps
   for (size_t i = 0; i < N; ++i)
     for (int c = 0; c < dim; ++c)
       if (!mask || !((*mask)[i] & (1 << c))) dofs.push_back(Dof{-1, i, c, Vec4::Zero()});

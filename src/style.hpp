@@ -1,5 +1,7 @@
-// Base classes of the style families. A style receives the Simulation it lives
-// in at construction; it requests the node properties it needs there.
+// Base classes of the style families. A force style (bond, pair, shell, fix, growth,
+// region) receives the scene's Context (src/context.hpp) at construction and in every
+// call; integrators, computes and dumps drive or observe the run and receive the
+// Simulation. A style requests the node properties it needs at construction.
 #pragma once
 
 #include <functional>
@@ -14,6 +16,7 @@
 namespace slender {
 
 class Simulation;
+class Context;
 
 // Named arrays a style saves in checkpoints so a restart is bit-identical.
 using StateMap = std::map<std::string, std::vector<double>>;
@@ -31,6 +34,8 @@ inline const std::vector<double>* load_measured(const StateMap& st, std::size_t 
 
 class Style {
  public:
+  // Whether the family's constructors and calls take the Context (else the Simulation).
+  static constexpr bool kSeesContext = false;
   virtual ~Style() = default;
   const std::string& style_name() const { return style_name_; }
   void set_style_name(const std::string& s) { style_name_ = s; }
@@ -43,7 +48,7 @@ class Style {
   virtual int priority() const { return 0; }
   // Called once the style has its id, before any run: the place to request node
   // properties whose names depend on the id.
-  virtual void attach(Simulation&) {}
+  virtual void attach(Context&) {}
   virtual void save_state(StateMap&) const {}
   virtual void load_state(const StateMap&) {}
   // The guard's last good state (src/simulation_guard.cpp): keep() records what save_state()
@@ -74,24 +79,26 @@ class Style {
 class BondStyle : public Style {
  public:
   static const char* family() { return "bond"; }
+  static constexpr bool kSeesContext = true;
   // Adds forces to nodes().f and returns the energy of this style.
-  virtual double compute(Simulation& sim) = 0;
+  virtual double compute(Context& sim) = 0;
   // Energy category for thermo ("stretch", "bend", ...).
   virtual const char* energy_category() const = 0;
   // Highest angular frequency this style can excite, for the stable time step.
-  virtual double max_frequency(const Simulation& sim) const = 0;
+  virtual double max_frequency(const Context& sim) const = 0;
   // Chains this instance acts on.
-  virtual void setup(Simulation&) {}
+  virtual void setup(Context&) {}
 };
 
 // Contacts found by neighbour search (families in later issues).
 class PairStyle : public Style {
  public:
   static const char* family() { return "pair"; }
+  static constexpr bool kSeesContext = true;
   int priority() const override { return 100; }
-  virtual void setup(Simulation&) {}
-  virtual double compute(Simulation& sim) = 0;
-  virtual double max_frequency(const Simulation& sim) const = 0;
+  virtual void setup(Context&) {}
+  virtual double compute(Context& sim) = 0;
+  virtual double max_frequency(const Context& sim) const = 0;
   // Highest frequency measured at the last force evaluation (contacts as they are now);
   // 0 where a style measures none. The adaptive step uses the larger of the two.
   virtual double measured_frequency() const { return 0.0; }
@@ -112,15 +119,16 @@ inline constexpr int kMeasuresForces = 1000;
 class FixStyle : public Style {
  public:
   static const char* family() { return "fix"; }
+  static constexpr bool kSeesContext = true;
   virtual unsigned stages() const = 0;
-  virtual void setup(Simulation&) {}
+  virtual void setup(Context&) {}
   // Called by sim:unfix before the fix is destroyed: release what it holds in shared
   // node data (a clamp's mask bits).
-  virtual void detach(Simulation&) {}
+  virtual void detach(Context&) {}
   // Adds forces; returns the potential energy of conservative fixes (else 0).
-  virtual double post_force(Simulation&) { return 0.0; }
-  virtual void end_of_step(Simulation&) {}
-  virtual double max_frequency(const Simulation&) const { return 0.0; }
+  virtual double post_force(Context&) { return 0.0; }
+  virtual void end_of_step(Context&) {}
+  virtual double max_frequency(const Context&) const { return 0.0; }
   // As PairStyle::measured_frequency (walls in contact now).
   virtual double measured_frequency() const { return 0.0; }
 };
@@ -130,12 +138,13 @@ class FixStyle : public Style {
 class ShellStyle : public Style {
  public:
   static const char* family() { return "shell"; }
+  static constexpr bool kSeesContext = true;
   // first in the force stage: a shell places its ghost nodes, which bonds may read
   int priority() const override { return -100; }
-  virtual void setup(Simulation&) {}
-  // Adds forces; records its energies with Simulation::add_energy.
-  virtual void compute(Simulation& sim) = 0;
-  virtual double max_frequency(const Simulation& sim) const = 0;
+  virtual void setup(Context&) {}
+  // Adds forces; records its energies with Context::add_energy.
+  virtual void compute(Context& sim) = 0;
+  virtual double max_frequency(const Context& sim) const = 0;
 };
 
 // In-plane growth tensors G(X, t) of the multiplicative decomposition F = A G
@@ -143,6 +152,7 @@ class ShellStyle : public Style {
 class GrowthStyle : public Style {
  public:
   static const char* family() { return "growth"; }
+  static constexpr bool kSeesContext = true;
   // 3x3 world-frame tensor; only its action on tangent vectors matters.
   virtual Eigen::Matrix3d tensor(const Vec3& X, double time) const = 0;
   // Depends on time by itself (not only through sim:modify).
@@ -222,6 +232,7 @@ class IntegratorStyle : public Style {
 class RegionStyle : public Style {
  public:
   static const char* family() { return "region"; }
+  static constexpr bool kSeesContext = true;
   virtual bool contains(const Vec3& x) const = 0;
   // Part of the domain: a node outside every bounding region stops the run.
   bool bounds() const { return bounds_; }

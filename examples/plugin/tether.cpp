@@ -5,8 +5,8 @@
 // with SLENDER_PLUGIN_PATH set) exactly like a built-in style.
 #include <cmath>
 
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace mystyles {
 
@@ -21,12 +21,12 @@ class TetherFix : public FixStyle {
     s.real("k", "spring constant").required().positive();
     return s;
   }
-  TetherFix(Simulation& sim, const ParamValues& p)
+  TetherFix(Context& sim, const ParamValues& p)
       : group_(p.str("group")), point_(p.vec3("point")), k_(p.real("k")) {
     sim.group(group_);  // an unknown group stops the deck at this line
   }
   unsigned stages() const override { return kPostForce; }
-  double post_force(Simulation& sim) override {
+  double post_force(Context& sim) override {
     double e = 0;
     for (int i : sim.group(group_)) {
       const Vec3 d = sim.nodes().x[i] - point_;
@@ -35,7 +35,7 @@ class TetherFix : public FixStyle {
     }
     return e;
   }
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     double m = 1e300;
     for (int i : sim.group(group_)) m = std::min(m, sim.nodes().mass[i]);
     return m < 1e300 ? std::sqrt(k_ / m) : 0.0;

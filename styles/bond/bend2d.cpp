@@ -21,14 +21,14 @@ class Bend2dBond : public ChainBondStyle {
     declare_chains(s);
     return s;
   }
-  Bend2dBond(Simulation& sim, const ParamValues& p)
+  Bend2dBond(Context& sim, const ParamValues& p)
       : ChainBondStyle(sim, p), k_(p.real("k")), gamma_(p.real("damping")) {
     if (sim.dimension() != 2)
       throw InputError("bond style 'bend2d' needs a 2D simulation (dimension = 2)");
   }
   const char* energy_category() const override { return "bend"; }
 
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     const auto& x = sim.nodes().x;
     const auto& v = sim.nodes().v;
     double energy = 0.0;
@@ -54,7 +54,7 @@ class Bend2dBond : public ChainBondStyle {
     }
     return energy;
   }
-  double max_frequency(const Simulation& sim) const override { return bend_frequency(sim, k_); }
+  double max_frequency(const Context& sim) const override { return bend_frequency(sim, k_); }
 
  private:
   double k_, gamma_;

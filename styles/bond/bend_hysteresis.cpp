@@ -53,7 +53,7 @@ class BendHysteresisBond : public ChainBondStyle {
     return s;
   }
 
-  BendHysteresisBond(Simulation& sim, const ParamValues& p)
+  BendHysteresisBond(Context& sim, const ParamValues& p)
       : ChainBondStyle(sim, p),
         k_(p.real("k")),
         ky_(p.real("yield_curvature")),
@@ -95,7 +95,7 @@ class BendHysteresisBond : public ChainBondStyle {
       }
     recoverable_ = recoverable0_;
   }
-  void setup(Simulation& sim) override {
+  void setup(Context& sim) override {
     ChainBondStyle::setup(sim);
     kpl_ = sim.nodes().find<double>("bend.plastic_curvature");
   }
@@ -155,7 +155,7 @@ class BendHysteresisBond : public ChainBondStyle {
     return M;
   }
 
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     const auto& x = sim.nodes().x;
     const auto& v = sim.nodes().v;
     double energy = 0.0;
@@ -197,7 +197,7 @@ class BendHysteresisBond : public ChainBondStyle {
     return energy;
   }
   // the elastic slope is the stiffest (K_h < K_e): as bend2d
-  double max_frequency(const Simulation& sim) const override { return bend_frequency(sim, k_); }
+  double max_frequency(const Context& sim) const override { return bend_frequency(sim, k_); }
   std::vector<std::string> value_keys() const override {
     return {"dissipated", "work", "recoverable"};
   }

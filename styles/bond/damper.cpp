@@ -18,10 +18,10 @@ class DamperBond : public ChainBondStyle {
     declare_chains(s);
     return s;
   }
-  DamperBond(Simulation& sim, const ParamValues& p)
+  DamperBond(Context& sim, const ParamValues& p)
       : ChainBondStyle(sim, p), gamma_(p.real("gamma")) {}
   const char* energy_category() const override { return "damping"; }
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
     for (auto* c : chains(sim)) {
@@ -36,7 +36,7 @@ class DamperBond : public ChainBondStyle {
     return 0.0;
   }
   // explicit schemes need 4 gamma dt / m below ~1 (a node between two dampers, zig-zag)
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     auto ch = select_chains(sim, names_);
     return ch.empty() ? 0.0 : 4.0 * gamma_ / min_mass(sim, ch);
   }

@@ -45,7 +45,7 @@ class CosseratRodBond : public ChainBondStyle {
     declare_chains(s);
     return s;
   }
-  CosseratRodBond(Simulation& sim, const ParamValues& p)
+  CosseratRodBond(Context& sim, const ParamValues& p)
       : ChainBondStyle(sim, p),
         K_(p.real("YI"), p.real("YI"), p.real("GJ")),
         C_(p.real("coupling")),
@@ -60,7 +60,7 @@ class CosseratRodBond : public ChainBondStyle {
   }
   const char* energy_category() const override { return "bend"; }
 
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     const auto& x = sim.nodes().x;
     auto& q = coords_->q->values();
     auto& fq = coords_->f->values();
@@ -143,7 +143,7 @@ class CosseratRodBond : public ChainBondStyle {
     return ChainBondStyle::value(key);
   }
 
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     auto ch = select_chains(sim, names_);
     if (ch.empty()) return 0.0;
     const double l0 = min_rest(ch), m = min_mass(sim, ch);
@@ -159,7 +159,7 @@ class CosseratRodBond : public ChainBondStyle {
  private:
   // Gives every edge of the chain its quaternion mass and, for an edge that has
   // none yet, its frame; the node after an open chain's last edge carries no edge.
-  void bind_edges(Simulation& sim, const Chain& c) {
+  void bind_edges(Context& sim, const Chain& c) {
     auto& x = sim.nodes().x;
     auto& q = coords_->q->values();
     auto& born = born_->values();

@@ -27,13 +27,12 @@ class StraightRodBond : public ChainBondStyle {
     declare_chains(s);
     return s;
   }
-  StraightRodBond(Simulation& sim, const ParamValues& p)
-      : ChainBondStyle(sim, p), yi_(p.real("YI")) {
+  StraightRodBond(Context& sim, const ParamValues& p) : ChainBondStyle(sim, p), yi_(p.real("YI")) {
     if (p.boolean("node_energy")) node_energy_ = &sim.nodes().require<double>("bend.energy", 0.0);
   }
   const char* energy_category() const override { return "bend"; }
 
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     const auto& x = sim.nodes().x;
     double energy = 0.0;
     if (node_energy_)
@@ -79,7 +78,7 @@ class StraightRodBond : public ChainBondStyle {
     return energy;
   }
   // zig-zag mode: a small turning angle phi stores YI phi^2 / (2 l0), i.e. k2 = YI / l0
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     auto ch = select_chains(sim, names_);
     return ch.empty() ? 0.0 : bend_frequency(sim, yi_ / min_rest(ch));
   }

@@ -15,9 +15,9 @@ class SpringBond : public ChainBondStyle {
     declare_chains(s);
     return s;
   }
-  SpringBond(Simulation& sim, const ParamValues& p) : ChainBondStyle(sim, p), k_(p.real("k")) {}
+  SpringBond(Context& sim, const ParamValues& p) : ChainBondStyle(sim, p), k_(p.real("k")) {}
   const char* energy_category() const override { return "stretch"; }
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     const auto& x = sim.nodes().x;
     double energy = 0.0;
     for (auto* c : chains(sim)) {
@@ -42,7 +42,7 @@ class SpringBond : public ChainBondStyle {
     }
     return energy;
   }
-  double max_frequency(const Simulation& sim) const override { return stretch_frequency(sim, k_); }
+  double max_frequency(const Context& sim) const override { return stretch_frequency(sim, k_); }
   std::vector<std::string> value_keys() const override { return {"k"}; }
   double value(const std::string& key) const override {
     if (key == "k") return k_;

@@ -44,7 +44,7 @@ class H5mdDump : public DumpStyle {
     h5::attr_string(author, "name", "slender user");
     auto creator = h5::create_group(meta, "creator");
     h5::attr_string(creator, "name", "slender");
-    h5::attr_string(creator, "version", "0.1.0");
+    h5::attr_string(creator, "version", SLENDER_VERSION_STRING);
     auto particles = h5::create_group(file_h_, "particles");
     all_ = h5::create_group(particles, "all");
     auto box = h5::create_group(all_, "box");

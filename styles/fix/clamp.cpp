@@ -2,8 +2,8 @@
 // velocity, so every integrator leaves them where they are. For director-free wires
 // a clamped rotation is the direction of the end edge, so `rotation = true` also
 // clamps the chain neighbour of every chain end in the group.
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -17,7 +17,7 @@ class ClampFix : public FixStyle {
         .def(false);
     return s;
   }
-  ClampFix(Simulation& sim, const ParamValues& p) {
+  ClampFix(Context& sim, const ParamValues& p) {
     int bits = 0;
     for (char ch : p.str("components")) {
       if (ch == 'x')
@@ -31,7 +31,7 @@ class ClampFix : public FixStyle {
                          p.str("components") + "\"");
     }
     auto nodes = sim.group(p.str("group"));
-    auto& mask = sim.nodes().require<int>("dof_mask", 0);
+    auto& mask = sim.held_components();
     bits_ = bits;
     auto add = [&](int i) {
       mask[i] |= bits;
@@ -54,16 +54,16 @@ class ClampFix : public FixStyle {
   // The bits are (re)set here too: a clamp removed by sim:unfix clears its bits, and the
   // other clamps of the same nodes set theirs again before the next step.
   unsigned stages() const override { return kSetup; }
-  void setup(Simulation& sim) override {
-    auto& mask = *sim.nodes().find<int>("dof_mask");
+  void setup(Context& sim) override {
+    auto& mask = *sim.held_components_if_any();
     for (int i : clamped_) {
       mask[i] |= bits_;
       for (int c = 0; c < 3; ++c)
         if (mask[i] & (1 << c) & bits_) sim.nodes().v[i][c] = 0.0;
     }
   }
-  void detach(Simulation& sim) override {
-    if (auto* mask = sim.nodes().find<int>("dof_mask"))
+  void detach(Context& sim) override {
+    if (auto* mask = sim.held_components_if_any())
       for (int i : clamped_) (*mask)[i] &= ~bits_;
   }
   std::vector<std::string> value_keys() const override { return {"count"}; }

@@ -1,7 +1,7 @@
 // A constant (or linearly ramped) external force on every node of a group:
 // F(t) = force + rate (t - t0). Its potential is -F . (x - x_ref).
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -16,18 +16,18 @@ class ConstantForceFix : public FixStyle {
         .length(2, 3);
     return s;
   }
-  ConstantForceFix(Simulation& sim, const ParamValues& p)
+  ConstantForceFix(Context& sim, const ParamValues& p)
       : group_(p.str("group")),
         force_(p.vec3("force")),
         rate_(p.vec3("rate")),
-        t0_(sim.time),
+        t0_(sim.time()),
         dim_(sim.dimension()) {
     check_plane();
     nodes_ = sim.group(group_);
     for (int i : nodes_) ref_.push_back(sim.nodes().x[i]);
   }
   unsigned stages() const override { return kPostForce | kSetup; }
-  void setup(Simulation& sim) override {
+  void setup(Context& sim) override {
     if (nodes_.size() != sim.group(group_).size()) {
       nodes_ = sim.group(group_);
       ref_.clear();
@@ -35,8 +35,8 @@ class ConstantForceFix : public FixStyle {
     }
   }
   Vec3 current(double t) const { return force_ + rate_ * (t - t0_); }
-  double post_force(Simulation& sim) override {
-    const Vec3 F = current(sim.time);
+  double post_force(Context& sim) override {
+    const Vec3 F = current(sim.time());
     auto& f = sim.nodes().f;
     auto& x = sim.nodes().x;
     double e = 0.0;

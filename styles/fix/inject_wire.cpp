@@ -15,8 +15,8 @@
 #include <deque>
 #include <limits>
 
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -84,7 +84,7 @@ class WireInjectionFix : public FixStyle {
     return s;
   }
 
-  WireInjectionFix(Simulation& sim, const ParamValues& p)
+  WireInjectionFix(Context& sim, const ParamValues& p)
       : chain_(p.str("chain")),
         r_(p.real("radius")),
         c_(p.vec3("center")),
@@ -134,7 +134,7 @@ class WireInjectionFix : public FixStyle {
       k.rest = k.front ? c->rest_length.front() : c->rest_length.back();
       k.mass = sim.nodes().mass[node];
     }
-    mask_ = &sim.nodes().require<int>("dof_mask", 0);
+    mask_ = &sim.held_components();
     // kinematic channel nodes: clamped degrees of freedom, constant inward velocity
     for (int i : c->nodes)
       if (in_channel(x[i])) drive(sim, i);
@@ -143,10 +143,10 @@ class WireInjectionFix : public FixStyle {
   unsigned stages() const override { return kSetup | kPostForce | kEndOfStep; }
   // post_force measures the injection force from the complete forces: after every other fix
   int priority() const override { return kMeasuresForces; }
-  void setup(Simulation& sim) override {
-    mask_ = sim.nodes().find<int>("dof_mask");
+  void setup(Context& sim) override {
+    mask_ = sim.held_components_if_any();
     if (hold_rotation_) {
-      held_ = sim.nodes().find<int>("rod.q.fixed");
+      held_ = sim.prescribed_frames("rod.q");
       if (!held_)
         throw InputError(
             "fix style 'inject/wire': rotation = \"held\" needs a rod with frames "
@@ -169,7 +169,7 @@ class WireInjectionFix : public FixStyle {
     recount_in_ = 0;  // the recount interval follows the feed speed
   }
 
-  double post_force(Simulation& sim) override {
+  double post_force(Context& sim) override {
     // the feeder balances the inward component of the internal forces
     auto& f = sim.nodes().f;
     double total = 0.0;
@@ -178,7 +178,7 @@ class WireInjectionFix : public FixStyle {
     return 0.0;
   }
 
-  void end_of_step(Simulation& sim) override {
+  void end_of_step(Context& sim) override {
     auto& x = sim.nodes().x;
     Chain* c = sim.topology().find(chain_);
     // the nodes this fix drives are free once they are clear of the rim
@@ -201,7 +201,7 @@ class WireInjectionFix : public FixStyle {
         Vec3 pos = x[outer] - k.u * k.rest;
         to_axis(pos, k.u);
         const int n = sim.grow_chain(chain_, k.front, pos, k.mass, k.rest);
-        mask_ = sim.nodes().find<int>("dof_mask");
+        mask_ = sim.held_components_if_any();
         drive(sim, n);
         injected_ += k.rest;
         fed_ = true;
@@ -211,17 +211,17 @@ class WireInjectionFix : public FixStyle {
     // The packing density changes only as edge midpoints cross the rim, i.e. as the feed
     // advances: recount it (O(N)) each 1/50 of a rest length of feed and after a node
     // entered, not every step (it was 6 % of a crumpling run's time).
-    recount_in_ -= sim.dt;
+    recount_in_ -= sim.dt();
     if (recount_in_ <= 0 || fed_) {
       phi_ = packing(sim);
       const double rest = channels_.empty() ? d_ : channels_.front().rest;
-      recount_in_ = v_ > 0 ? 0.02 * rest / v_ : 1000 * sim.dt;
+      recount_in_ = v_ > 0 ? 0.02 * rest / v_ : 1000 * sim.dt();
       fed_ = false;
     }
     // time-weighted moving average of the injection force over the last jam_time
-    history_.push_back({sim.dt, force_});
-    sum_ += sim.dt * force_;
-    span_ += sim.dt;
+    history_.push_back({sim.dt(), force_});
+    sum_ += sim.dt() * force_;
+    span_ += sim.dt();
     while (history_.size() > 1 && span_ - history_.front().first >= window_) {
       sum_ -= history_.front().first * history_.front().second;
       span_ -= history_.front().first;
@@ -339,7 +339,7 @@ class WireInjectionFix : public FixStyle {
     return *best;
   }
   // a random displacement of amplitude perturb_ normal to the channel axis
-  void kick(Simulation& sim, int i) {
+  void kick(Context& sim, int i) {
     const Vec3 u = driving(sim.nodes().x[i]).u;
     std::uniform_real_distribution<double> r(-1.0, 1.0);
     Vec3 d(r(sim.rng()), r(sim.rng()), dim_ == 3 ? r(sim.rng()) : 0.0);
@@ -352,10 +352,10 @@ class WireInjectionFix : public FixStyle {
     x -= r - u * r.dot(u);
     if (dim_ == 2) x.z() = 0.0;
   }
-  void drive(Simulation& sim, int i) {
+  void drive(Context& sim, int i) {
     (*mask_)[i] = kMaskAll;
     if (hold_rotation_) {
-      held_ = sim.nodes().find<int>("rod.q.fixed");
+      held_ = sim.prescribed_frames("rod.q");
       if (held_) (*held_)[i] = 1;
     }
     driven_.push_back(i);
@@ -363,7 +363,7 @@ class WireInjectionFix : public FixStyle {
     sim.nodes().v[i] = v_ * k.u;
     to_axis(sim.nodes().x[i], k.u);
   }
-  double packing(Simulation& sim) {
+  double packing(Context& sim) {
     Chain* c = sim.topology().find(chain_);
     auto& x = sim.nodes().x;
     double length = 0.0;

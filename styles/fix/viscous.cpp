@@ -1,6 +1,6 @@
 // Viscous damping F = -gamma v on a group (MODELS.md §2.1, "small viscous damping").
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -12,13 +12,13 @@ class ViscousDampingFix : public FixStyle {
     s.string("group", "node group").def(std::string("all"));
     return s;
   }
-  ViscousDampingFix(Simulation& sim, const ParamValues& p)
+  ViscousDampingFix(Context& sim, const ParamValues& p)
       : gamma_(p.real("gamma")), group_(p.str("group")) {
     sim.group(group_);
   }
   unsigned stages() const override { return kPostForce | kSetup; }
-  void setup(Simulation& sim) override { nodes_ = sim.group(group_); }
-  double post_force(Simulation& sim) override {
+  void setup(Context& sim) override { nodes_ = sim.group(group_); }
+  double post_force(Context& sim) override {
     auto& f = sim.nodes().f;
     auto& v = sim.nodes().v;
     // each node is its own work item (threads.hpp)
@@ -28,7 +28,7 @@ class ViscousDampingFix : public FixStyle {
     return 0.0;
   }
   // Explicit schemes need gamma dt / m below ~1; report gamma/m as a rate.
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     double mmin = 1e300;
     for (int i : sim.group(group_)) mmin = std::min(mmin, sim.nodes().mass[i]);
     return mmin < 1e300 ? gamma_ / mmin : 0.0;

@@ -4,10 +4,11 @@
 // friction history is a node property, allocated only when mu_static > 0.
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "contact_law.hpp"
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -40,7 +41,7 @@ class SphereWallFix : public FixStyle {
         .nonnegative();
     return s;
   }
-  SphereWallFix(Simulation& sim, const ParamValues& p)
+  SphereWallFix(Context& sim, const ParamValues& p)
       : c_(p.vec3("center")),
         r_(p.real("radius")),
         r0_(p.real("radius")),
@@ -55,27 +56,32 @@ class SphereWallFix : public FixStyle {
                   p.real("radius")) {
     sim.group(group_);
     if (sim.dimension() == 2) c_.z() = 0.0;
+    if (inside_ && r0_ <= 0.5 * d_)
+      throw InputError("wall: radius " + fmt(r0_) +
+                       " is not larger than the wire's radius d/2 = " + fmt(0.5 * d_) +
+                       ": no wire fits inside; give a larger radius or a smaller diameter");
   }
   unsigned stages() const override { return kPostForce | kSetup; }
   // The friction history is named after the fix id, known from attach() on.
-  void attach(Simulation& sim) override { bind(sim); }
-  void setup(Simulation& sim) override {
+  void attach(Context& sim) override { bind(sim); }
+  void setup(Context& sim) override {
     nodes_ = sim.group(group_);
     bind(sim);
+    if (sim.step() == 0) check_start(sim);
   }
-  void bind(Simulation& sim) {
+  void bind(Context& sim) {
     if (law_.frictional() && !xi_) {
       xi_ = &sim.nodes().require<Vec3>("wall:" + id() + ".xi", Vec3::Zero());
       state_ = &sim.nodes().require<int>("wall:" + id() + ".state", 0);
     }
   }
-  double post_force(Simulation& sim) override {
+  double post_force(Context& sim) override {
     if (law_.frictional() && !xi_) bind(sim);
-    if (rate_ > 0) r_ = r0_ / (1 + rate_ * sim.time);
+    if (rate_ > 0) r_ = r0_ / (1 + rate_ * sim.time());
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
     auto& f = sim.nodes().f;
-    const Property<int>* mask = sim.dof_mask();
+    const Property<int>* mask = sim.held_components_if_any();
     // below this squared distance from the centre a node is clear of the wall by more than
     // a part in 1e-9 of r, so the exact test below would reject it too
     const double clear = (r_ - 0.5 * d_) * (1.0 - 1e-9);
@@ -116,7 +122,7 @@ class SphereWallFix : public FixStyle {
             }
             const Vec3 n = (inside_ ? -1.0 : 1.0) * rel / dist;  // pushes back into the domain
             double fn = 0.0, e_contact = 0.0;
-            f[i] += law_.force(delta, n, v[i], sim.dt, st, &fn, &e_contact);
+            f[i] += law_.force(delta, n, v[i], sim.dt(), st, &fn, &e_contact);
             if (law_.frictional()) {
               (*xi_)[i] = st.xi;
               (*state_)[i] = (st.stick ? 1 : 0) | (st.active ? 2 : 0);
@@ -138,7 +144,7 @@ class SphereWallFix : public FixStyle {
     stiffness_.finish(sim.nodes().mass);
     return e;
   }
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     double mmin = 1e300;
     for (int i : sim.group(group_)) mmin = std::min(mmin, sim.nodes().mass[i]);
     if (mmin >= 1e300) return 0.0;
@@ -172,6 +178,38 @@ class SphereWallFix : public FixStyle {
   }
 
  private:
+  static std::string fmt(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+  }
+  // Before the first step: a free node wholly on the wrong side of the wall would be thrown
+  // back with a force of the full overlap, and the guard would report it later as a torn edge.
+  // Say it in the deck's words now. Held nodes (an injection channel) and nodes in an
+  // opening may lie beyond the wall.
+  void check_start(Context& sim) const {
+    const auto& x = sim.nodes().x;
+    const Property<int>* mask = sim.held_components_if_any();
+    for (int i : nodes_) {
+      if (mask && (*mask)[i] == kMaskAll) continue;
+      const Vec3 rel = x[i] - c_;
+      const double dist = rel.norm();
+      // wholly beyond the surface: an overlap of more than the diameter (a deep contact
+      // within one diameter is the wall's business)
+      const bool wrong = inside_ ? dist > r_ + 0.5 * d_ : dist < r_ - 0.5 * d_;
+      if (!wrong || in_opening(rel)) continue;
+      std::string where = "node " + std::to_string(i + 1);
+      for (auto& c : sim.topology().chains)
+        for (std::size_t k = 0; k < c.nodes.size(); ++k)
+          if (c.nodes[k] == i)
+            where += " (chain '" + c.name + "', its node " + std::to_string(k + 1) + ")";
+      throw InputError("fix '" + id() + "' (" + style_name() + "): " + where + " starts " +
+                       (inside_ ? "outside" : "inside") + " the wall: " + fmt(dist) +
+                       " from its centre, radius " + fmt(r_) + " (side = \"" +
+                       (inside_ ? "inside" : "outside") +
+                       "\"); move the wire, or give the wall openings where it enters");
+    }
+  }
   // Holes in the wall, e.g. where injection channels enter the cavity.
   bool in_opening(const Vec3& rel) const {
     if (openings_.empty()) return false;

@@ -5,8 +5,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -23,7 +23,7 @@ class EconeGrowth : public GrowthStyle {
         .length(3, 3);
     return s;
   }
-  EconeGrowth(Simulation&, const ParamValues& p) { read(p); }
+  EconeGrowth(Context&, const ParamValues& p) { read(p); }
   void read(const ParamValues& p) {
     phi_e_ = p.real("phi_e");
     c_ = p.vec3("center");

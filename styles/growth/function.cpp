@@ -3,8 +3,8 @@
 // function returns a scalar (isotropic), four numbers (the in-plane tensor in world
 // x, y) or nine. With time_dependent = true it is called again whenever the scene
 // time changes (once per Gauss point: convenient, not fast).
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -17,7 +17,7 @@ class FunctionGrowth : public GrowthStyle {
     s.boolean("time_dependent", "re-evaluate whenever the time changes").def(false);
     return s;
   }
-  FunctionGrowth(Simulation&, const ParamValues& p) : time_(p.boolean("time_dependent")) {}
+  FunctionGrowth(Context&, const ParamValues& p) : time_(p.boolean("time_dependent")) {}
   bool wants_function() const override { return true; }
   void set_function(Function f) override {
     f_ = std::move(f);

@@ -1,7 +1,7 @@
 // Uniform isotropic in-plane growth (MODELS.md §6.9, (5.41)): G = g (1 + rate t) 1,
 // with g a constant factor (sim:modify can change it) and t the scene time.
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -14,7 +14,7 @@ class IsotropicGrowth : public GrowthStyle {
     s.real("rate", "growth rate lambda (per time unit)").def(0.0);
     return s;
   }
-  IsotropicGrowth(Simulation&, const ParamValues& p)
+  IsotropicGrowth(Context&, const ParamValues& p)
       : factor_(p.real("factor")), rate_(p.real("rate")) {}
   Eigen::Matrix3d tensor(const Vec3&, double t) const override {
     return factor_ * (1.0 + rate_ * t) * Eigen::Matrix3d::Identity();

@@ -35,7 +35,7 @@ class NodeEdgeContactPair : public PairStyle {
     return s;
   }
 
-  NodeEdgeContactPair(Simulation& sim, const ParamValues& p)
+  NodeEdgeContactPair(Context& sim, const ParamValues& p)
       : d_(p.real("diameter")),
         law_(ContactLaw::from(p, p.real("diameter"))),
         schedule_(p),
@@ -46,7 +46,7 @@ class NodeEdgeContactPair : public PairStyle {
     select_chains(sim, names_);
   }
 
-  void setup(Simulation& sim) override {
+  void setup(Context& sim) override {
     chains_ = select_chains(sim, names_);
     // the first edge not excluded along a straight wire at rest starts exclude + 1 rest
     // lengths away: a diameter that reaches it puts the wire in contact with itself before
@@ -85,13 +85,13 @@ class NodeEdgeContactPair : public PairStyle {
     need_build_ = true;
   }
 
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     if (edges_.empty() && !chains_.empty()) setup(sim);
     if (chain_of_.size() != sim.nodes().size() || topology_changed(sim)) setup(sim);
-    if (need_build_ || schedule_.due(sim)) build(sim);
+    if (schedule_.due(sim, need_build_)) build(sim);
     auto& x = sim.nodes().x;
     auto& v = sim.nodes().v;
-    const double dt = sim.dt;
+    const double dt = sim.dt();
     double energy = 0.0;
     contacts_ = 0;
     stiffness_.prepare(sim.threads(), sim.nodes().size());
@@ -204,7 +204,7 @@ class NodeEdgeContactPair : public PairStyle {
     return energy;
   }
 
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     double m = 1e300;
     for (auto* c : select_chains(sim, names_))
       for (int i : c->nodes) m = std::min(m, sim.nodes().mass[i]);
@@ -308,7 +308,7 @@ class NodeEdgeContactPair : public PairStyle {
     xi_[k].setZero();
     c.side = 0;
   }
-  bool topology_changed(const Simulation&) const {
+  bool topology_changed(const Context&) const {
     size_t ne = 0;
     for (auto* c : chains_) ne += static_cast<size_t>(c->n_edges());
     return ne != edges_.size();
@@ -325,7 +325,7 @@ class NodeEdgeContactPair : public PairStyle {
   }
 
   // Linked cells over the nodes; each edge is filed under its midpoint's cell.
-  void build(Simulation& sim) {
+  void build(Context& sim) {
     auto& x = sim.nodes().x;
     const double cutoff = d_ + schedule_.skin();
     double lmax = 0.0;

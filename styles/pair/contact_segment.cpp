@@ -44,7 +44,7 @@ class SegmentContactPair : public PairStyle {
     return s;
   }
 
-  SegmentContactPair(Simulation& sim, const ParamValues& p)
+  SegmentContactPair(Context& sim, const ParamValues& p)
       : a_(p.real("radius")),
         law_(ContactLaw::from(p, 2.0 * p.real("radius"))),
         schedule_(p),
@@ -67,7 +67,7 @@ class SegmentContactPair : public PairStyle {
     if (!p.has("stick_stiffness")) law_.stick_stiffness = 0.1 * nominal_k_;
   }
 
-  void setup(Simulation& sim) override {
+  void setup(Context& sim) override {
     chains_ = select_chains(sim, names_);
     edges_.clear();
     for (size_t c = 0; c < chains_.size(); ++c) {
@@ -88,12 +88,12 @@ class SegmentContactPair : public PairStyle {
     bound_ = true;
   }
 
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     if (!bound_ || topology_changed()) setup(sim);
-    if (need_build_ || schedule_.due(sim)) build(sim);
+    if (schedule_.due(sim, need_build_)) build(sim);
     const auto& x = sim.nodes().x;
     const auto& v = sim.nodes().v;
-    const double dt = sim.dt, reach = 2.0 * a_, reach2 = reach * reach;
+    const double dt = sim.dt(), reach = 2.0 * a_, reach2 = reach * reach;
     stiffness_.prepare(sim.threads(), sim.nodes().size());
     std::array<int, kMaxThreads> count{};
     // each listed pair is one work item: its friction history is its own, its forces go
@@ -149,7 +149,7 @@ class SegmentContactPair : public PairStyle {
     return energy;
   }
 
-  double max_frequency(const Simulation& sim) const override {
+  double max_frequency(const Context& sim) const override {
     auto chains = select_chains(sim, names_);
     if (chains.empty()) return 0.0;
     const double m = min_mass(sim, chains);
@@ -239,7 +239,7 @@ class SegmentContactPair : public PairStyle {
     return g <= exclude_;
   }
 
-  void build(Simulation& sim) {
+  void build(Context& sim) {
     auto& x = sim.nodes().x;
     const double cutoff = 2.0 * a_ + schedule_.skin();
     double lmax = 0.0;

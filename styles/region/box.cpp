@@ -1,6 +1,6 @@
 // Axis-aligned box lo <= x <= hi (z ignored in 2D).
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -14,7 +14,7 @@ class BoxRegion : public RegionStyle {
         .def(false);
     return s;
   }
-  BoxRegion(Simulation& sim, const ParamValues& p)
+  BoxRegion(Context& sim, const ParamValues& p)
       : lo_(p.vec3("lo")), hi_(p.vec3("hi")), dim_(sim.dimension()) {
     set_bounds(p.boolean("bounds"));
     for (int c = 0; c < dim_; ++c)

@@ -1,6 +1,6 @@
 // Disc in the xy plane, |(x - c)_xy| <= R; in 3D an infinite cylinder along z.
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -14,7 +14,7 @@ class CircleRegion : public RegionStyle {
         .def(false);
     return s;
   }
-  CircleRegion(Simulation&, const ParamValues& p) : c_(p.vec3("center")), r_(p.real("radius")) {
+  CircleRegion(Context&, const ParamValues& p) : c_(p.vec3("center")), r_(p.real("radius")) {
     set_bounds(p.boolean("bounds"));
   }
   bool contains(const Vec3& x) const override {

@@ -1,6 +1,6 @@
 // Ball |x - c| <= R (in 2D, the disc in the xy plane).
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -14,7 +14,7 @@ class SphereRegion : public RegionStyle {
         .def(false);
     return s;
   }
-  SphereRegion(Simulation& sim, const ParamValues& p) : c_(p.vec3("center")), r_(p.real("radius")) {
+  SphereRegion(Context& sim, const ParamValues& p) : c_(p.vec3("center")), r_(p.real("radius")) {
     set_bounds(p.boolean("bounds"));
     if (sim.dimension() == 2) c_.z() = 0;
   }

@@ -19,10 +19,10 @@
 #include <unordered_map>
 
 #include "contact_law.hpp"
+#include "context.hpp"
 #include "registry.hpp"
 #include "shell/triangle_distance.hpp"
 #include "shell/trimesh.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -77,7 +77,7 @@ class ShellContactPair : public PairStyle {
         .nonnegative();
     return s;
   }
-  ShellContactPair(Simulation& sim, const ParamValues& p)
+  ShellContactPair(Context& sim, const ParamValues& p)
       : mesh_name_(p.str("mesh")), h_(p.real("thickness")), every_(p.integer("rebuild_every")) {
     const Surface* s = sim.topology().find_surface(p.str("mesh"));
     if (!s) throw InputError("pair 'contact/shell': no mesh named '" + p.str("mesh") + "'");
@@ -141,14 +141,14 @@ class ShellContactPair : public PairStyle {
       for (auto& c : pairs_) c.friction = FrictionState{};
   }
 
-  void setup(Simulation& sim) override {
+  void setup(Context& sim) override {
     m_min_ = 1e300;
     for (int i = 0; i < mesh_->n_real_nodes; ++i)
       m_min_ = std::min(m_min_, sim.nodes().mass[base_ + i]);
   }
 
   // stiffness at an overlap of 20% of h, the scale of resolved contacts
-  double max_frequency(const Simulation&) const override {
+  double max_frequency(const Context&) const override {
     const double r = 0.8 * h_;
     double kr = k_ * (2 * (h_ - r) / (r * r) + 2 * (h_ - r) * (h_ - r) / (r * r * r));
     // the stick spring of a pair carrying the normal force at that overlap
@@ -158,7 +158,7 @@ class ShellContactPair : public PairStyle {
     return std::sqrt(kr / m_min_);
   }
 
-  double compute(Simulation& sim) override {
+  double compute(Context& sim) override {
     auto& x = sim.nodes().x;
     auto& f = sim.nodes().f;
     if (needs_rebuild(sim)) rebuild(x);
@@ -263,7 +263,7 @@ class ShellContactPair : public PairStyle {
         // lightly loaded pairs at a patch's rim do not slip first and unzip the patch
         ContactLaw law = friction_;
         law.stick_stiffness *= normal / k_;
-        const Vec3 ft = law.friction(normal, normal_sum / normal, vrel, sim.dt, c.friction);
+        const Vec3 ft = law.friction(normal, normal_sum / normal, vrel, sim.dt(), c.friction);
         for (int k = 0; k < 3; ++k) {
           f[base_ + T[c.t1][k]] += w1[k] * ft;
           f[base_ + T[c.t2][k]] -= w2[k] * ft;
@@ -407,7 +407,7 @@ class ShellContactPair : public PairStyle {
     return false;
   }
 
-  bool needs_rebuild(const Simulation& sim) const {
+  bool needs_rebuild(const Context& sim) const {
     if (built_x_.empty() || since_build_ >= every_) return true;
     const double lim = 0.25 * skin_ * skin_;
     for (int i = 0; i < mesh_->n_real_nodes; ++i)

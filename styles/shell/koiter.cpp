@@ -15,9 +15,9 @@
 #include <cmath>
 #include <random>
 
+#include "context.hpp"
 #include "registry.hpp"
 #include "shell/loop_patch.hpp"
-#include "simulation.hpp"
 
 namespace slender {
 
@@ -82,7 +82,7 @@ class KoiterShell : public ShellStyle {
     return s;
   }
 
-  KoiterShell(Simulation& sim, const ParamValues& p)
+  KoiterShell(Context& sim, const ParamValues& p)
       : mesh_name_(p.str("mesh")),
         h_(p.real("thickness")),
         Y_(p.real("young")),
@@ -107,7 +107,7 @@ class KoiterShell : public ShellStyle {
     precompute(sim);
   }
 
-  void setup(Simulation& sim) override {
+  void setup(Context& sim) override {
     if (!growth_id_.empty()) growth_ = &sim.growth(growth_id_);
     if (!constraints_done_) {
       apply_constraints(sim);
@@ -117,7 +117,7 @@ class KoiterShell : public ShellStyle {
     if (omega_ <= 0) omega_ = estimate_omega(sim);
   }
 
-  void compute(Simulation& sim) override {
+  void compute(Context& sim) override {
     if (!growth_id_.empty() && !growth_) growth_ = &sim.growth(growth_id_);
     update_growth(sim);
     auto& x = sim.nodes().x;
@@ -142,7 +142,7 @@ class KoiterShell : public ShellStyle {
     sim.add_energy("bend", eb + ghost_energy_);
   }
 
-  double max_frequency(const Simulation&) const override { return omega_; }
+  double max_frequency(const Context&) const override { return omega_; }
   // The frequency estimate depends on the configuration and growth of the first run; a
   // continued run keeps it so that its automatic step is the one it would have taken.
   void save_state(StateMap& st) const override { st["omega"] = {omega_}; }
@@ -176,7 +176,7 @@ class KoiterShell : public ShellStyle {
  private:
   const shell::GhostedMesh& mesh() const { return *mesh_; }
 
-  void precompute(Simulation& sim) {
+  void precompute(Context& sim) {
     const Surface* surface = sim.topology().find_surface(mesh_name_);
     mesh_ = surface->mesh;
     base_ = surface->first_node;
@@ -261,7 +261,7 @@ class KoiterShell : public ShellStyle {
   }
 
   // masses, and the node masks of the boundary rules
-  void apply_constraints(Simulation& sim) {
+  void apply_constraints(Context& sim) {
     const auto& g = mesh();
     auto& m = sim.nodes().mass;
     std::vector<double> lumped = lumped_;
@@ -276,7 +276,7 @@ class KoiterShell : public ShellStyle {
       }
     for (int i = 0; i < g.mesh.n_nodes(); ++i) m[base_ + i] = lumped[i];
     if (boundary_ == Boundary::kCombined || boundary_ == Boundary::kFreeGhosts) return;
-    auto& mask = sim.nodes().require<int>("dof_mask", 0);
+    auto& mask = sim.held_components();
     for (auto& gh : g.ghosts) mask[base_ + gh.node] = kMaskAll;
     if (boundary_ == Boundary::kSimplySupported || boundary_ == Boundary::kClamped)
       for (int b : g.boundary) mask[base_ + b] = kMaskAll;
@@ -286,15 +286,15 @@ class KoiterShell : public ShellStyle {
       if (mask[base_ + i] == kMaskAll) sim.nodes().v[base_ + i].setZero();
   }
 
-  void update_growth(Simulation& sim) {
+  void update_growth(Context& sim) {
     if (!growth_) return;
     if (growth_->version() == growth_version_ &&
-        !(growth_->time_dependent() && sim.time != growth_time_))
+        !(growth_->time_dependent() && sim.time() != growth_time_))
       return;
     growth_version_ = growth_->version();
-    growth_time_ = sim.time;
+    growth_time_ = sim.time();
     for (auto& gp : gauss_) {
-      const Mat3 G = growth_->tensor(gp.X, sim.time);
+      const Mat3 G = growth_->tensor(gp.X, sim.time());
       // mixed components Gtilde^c_a = abar^c . (G abar_a), abar^c = abar^{cd} abar_d
       const Mat2 ai = gp.abar.inverse();
       const Vec3 up1 = ai(0, 0) * gp.a1bar + ai(0, 1) * gp.a2bar;
@@ -442,11 +442,11 @@ class KoiterShell : public ShellStyle {
   // Largest omega of M^-1 K by power iteration on finite differences of the forces
   // at the current state (free degrees of freedom only), checked against the
   // membrane wave estimate 2 c / l_min (c^2 = Y / (rho (1 - nu^2))).
-  double estimate_omega(Simulation& sim) {
+  double estimate_omega(Context& sim) {
     const auto& g = mesh();
     const int n = g.mesh.n_nodes();
     std::vector<Vec3> x = sim.nodes().x, v(n);
-    const Property<int>* mask = sim.nodes().find<int>("dof_mask");
+    const Property<int>* mask = sim.held_components_if_any();
     auto free = [&](int i) { return !(mask && (*mask)[base_ + i] == kMaskAll); };
     std::mt19937_64 rng(12345);
     std::uniform_real_distribution<double> uni(-1, 1);
@@ -489,7 +489,7 @@ class KoiterShell : public ShellStyle {
     const double wave = 2 * std::sqrt(Y_ / (rho_ * (1 - nu_ * nu_))) / lmin_;
     // power iteration converges from below; keep a margin
     omega = std::max(1.1 * omega, 0.5 * wave);
-    if (sim.verbose)
+    if (sim.verbose())
       std::printf(
           "shell %s: omega_max %.4g (power iteration, +10%%), membrane wave 2c/l_min "
           "%.4g, l_min %.4g\n",

@@ -1,7 +1,7 @@
 // A plugin that claims to be built for another slender: loading it must be refused
 // with a clear message, before any of its styles register.
+#include "context.hpp"
 #include "registry.hpp"
-#include "simulation.hpp"
 
 namespace {
 class OldFix : public slender::FixStyle {
@@ -9,7 +9,7 @@ class OldFix : public slender::FixStyle {
   static slender::ParamSpec spec(const std::string& name) {
     return slender::ParamSpec("fix", name, "never registered");
   }
-  OldFix(slender::Simulation&, const slender::ParamValues&) {}
+  OldFix(slender::Context&, const slender::ParamValues&) {}
   unsigned stages() const override { return 0; }
 };
 }  // namespace

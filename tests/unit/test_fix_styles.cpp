@@ -144,9 +144,9 @@ TEST(ViscousDampingFix, ForceIsMinusGammaV) {
   sim.add_chain("w", wiggly_chain(3, 3, 1), 2.0, false);
   sim.nodes().v[1] = Vec3(1, -2, 3);
   sim.add_fix("drag", "damping/viscous", P({{"gamma", 0.5}}));
-  for (auto& f : sim.fixes()) f->setup(sim);
+  for (auto& f : sim.fixes()) f->setup(sim.context());
   sim.nodes().f[1].setZero();
-  sim.fix("drag").post_force(sim);
+  sim.fix("drag").post_force(sim.context());
   EXPECT_EQ(sim.nodes().f[1], Vec3(-0.5, 1.0, -1.5));
-  EXPECT_NEAR(sim.fix("drag").max_frequency(sim), 0.25, 1e-15);
+  EXPECT_NEAR(sim.fix("drag").max_frequency(sim.context()), 0.25, 1e-15);
 }

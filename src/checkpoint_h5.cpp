@@ -1,7 +1,11 @@
 // Checkpoints (restart files) in HDF5, written atomically: temp file + rename.
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
+#include <tuple>
 
+#include "context.hpp"
 #include "h5util.hpp"
 #include "simulation.hpp"
 
@@ -84,14 +88,55 @@ void Simulation::write_checkpoint(const std::string& path) {
 }
 
 void Simulation::read_checkpoint(const std::string& path) {
+  // Every failure names the file and what is wrong with it, in one line: a foreign or
+  // damaged file must not crash the run or leave it with arrays it cannot index.
+  try {
+    read_checkpoint_checked(path);
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    if (m.find(path) == std::string::npos) throw InputError("checkpoint '" + path + "': " + m);
+    throw;
+  } catch (const std::out_of_range&) {
+    throw InputError("checkpoint '" + path +
+                     "': a style's saved state lacks a dataset (written by another deck, or "
+                     "damaged)");
+  } catch (const std::exception& e) {
+    throw InputError("checkpoint '" + path + "': " + e.what() +
+                     " (not a slender checkpoint, or damaged)");
+  }
+}
+
+namespace {
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+}  // namespace
+
+void Simulation::read_checkpoint_checked(const std::string& path) {
+  auto bad = [&](const std::string& what) {
+    return InputError("checkpoint '" + path + "': " + what);
+  };
+  auto all_finite = [](const std::vector<double>& v) {
+    for (double x : v)
+      if (!std::isfinite(x)) return false;
+    return true;
+  };
   h5::Handle f;
   try {
     f = h5::open_file(path, false);
-  } catch (const std::exception&) {
-    throw InputError("cannot open checkpoint '" + path + "'");
+  } catch (const std::exception& e) {
+    throw InputError(e.what());
   }
   auto st = h5::open_group(f, "state");
   auto sc = h5::read_doubles(st, "scalars");
+  if (sc.size() < 7 || !all_finite(sc))
+    throw bad("dataset state/scalars must hold 7 finite numbers (step, time, dt, ...)");
+  if (sc[0] < 0 || sc[0] != std::floor(sc[0]) || sc[0] > 9.007199254740992e15 || sc[2] < 0 ||
+      sc[6] != std::floor(sc[6]))
+    throw bad("dataset state/scalars holds an impossible step " + num(sc[0]) + " or time step " +
+              num(sc[2]));
   if (static_cast<int>(sc[4]) != dim_)
     throw InputError("checkpoint '" + path + "' is " + std::to_string(int(sc[4])) +
                      "D, the scene is " + std::to_string(dim_) + "D");
@@ -109,54 +154,127 @@ void Simulation::read_checkpoint(const std::string& path) {
       if (!h5::exists(file_chains, c.name))
         throw InputError("checkpoint '" + path + "' has no chain '" + c.name + "'");
   }
+  // the node arrays: shapes, finite values, positive masses (read before the scene changes)
+  auto nodes = h5::open_group(f, "nodes");
+  std::vector<hsize_t> dims;
+  auto pos = h5::read_doubles(nodes, "position", &dims);
+  if (dims.size() != 2 || dims[1] != 3) throw bad("dataset nodes/position is not n x 3");
+  const std::size_t n = dims[0];
+  auto vel = h5::read_doubles(nodes, "velocity");
+  auto force = h5::read_doubles(nodes, "force");
+  auto mass = h5::read_doubles(nodes, "mass");
+  for (auto& [name, v, size] :
+       {std::tuple<const char*, const std::vector<double>*, std::size_t>{"position", &pos, 3 * n},
+        {"velocity", &vel, 3 * n},
+        {"force", &force, 3 * n},
+        {"mass", &mass, n}}) {
+    if (v->size() != size)
+      throw bad("dataset nodes/" + std::string(name) + " has " + std::to_string(v->size()) +
+                " values, " + std::to_string(size) + " expected for " + std::to_string(n) +
+                " nodes");
+    if (!all_finite(*v)) throw bad("dataset nodes/" + std::string(name) + " holds NaN or inf");
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(mass[i] > 0))
+      throw bad("dataset nodes/mass: node " + std::to_string(i + 1) + " has mass " + num(mass[i]));
+  // chains: node indices within the arrays, each node in one chain, one rest length per edge
+  auto chains = h5::open_group(f, "chains");
+  std::vector<std::pair<std::vector<int>, std::vector<double>>> chain_data;
+  {
+    std::vector<char> seen(n, 0);
+    for (auto& c : topo_.chains) {
+      auto g = h5::open_group(chains, c.name);
+      auto idx = h5::read_doubles(g, "nodes");
+      auto rest = h5::read_doubles(g, "rest_length");
+      const std::string where = "chain '" + c.name + "': ";
+      std::vector<int> ids;
+      for (double d : idx) {
+        if (!(d >= 0 && d < static_cast<double>(n) && d == std::floor(d)))
+          throw bad(where + "node index " + num(d) + " is not one of the " + std::to_string(n) +
+                    " nodes");
+        const int i = static_cast<int>(d);
+        if (seen[static_cast<std::size_t>(i)]++)
+          throw bad(where + "node " + std::to_string(i + 1) + " belongs to two chains");
+        ids.push_back(i);
+      }
+      const std::size_t edges = ids.size() < 2 ? 0 : (c.closed ? ids.size() : ids.size() - 1);
+      if (ids.size() < 2 || rest.size() != edges)
+        throw bad(where + std::to_string(ids.size()) + " nodes and " + std::to_string(rest.size()) +
+                  " rest lengths (one per edge expected)");
+      for (double r : rest)
+        if (!(std::isfinite(r) && r > 0)) throw bad(where + "a rest length is not positive");
+      chain_data.emplace_back(std::move(ids), std::move(rest));
+    }
+  }
   // styles create some node properties when they first bind (e.g. the shell's
   // dof_mask for its ghosts): bind them now, so a fresh scene that has not run yet
   // holds the same properties as the run that wrote the checkpoint
   if (nodes_.size() > 0) build_schedule();
-  auto nodes = h5::open_group(f, "nodes");
-  std::vector<hsize_t> dims;
-  auto pos = h5::read_doubles(nodes, "position", &dims);
-  nodes_.resize(dims[0]);
-  unflat3(pos, nodes_.x);
-  unflat3(h5::read_doubles(nodes, "velocity"), nodes_.v);
-  unflat3(h5::read_doubles(nodes, "force"), nodes_.f);
-  nodes_.mass = h5::read_doubles(nodes, "mass");
   auto props = h5::open_group(f, "properties");
   auto names = h5::children(props);
+  std::vector<std::pair<PropertyBase*, std::vector<double>>> prop_data;
   for (auto& name : names) {
     PropertyBase* p = nodes_.find_any(name);
     if (!p)
       throw InputError(
           "checkpoint '" + path + "' has node property '" + name +
           "' that this scene does not use: the deck differs from the one that wrote it");
-    p->from_flat(h5::read_doubles(props, name));
+    auto v = h5::read_doubles(props, name);
+    if (v.size() != n * static_cast<std::size_t>(p->ncomp()))
+      throw bad("node property '" + name + "' has " + std::to_string(v.size()) + " values, " +
+                std::to_string(n * static_cast<std::size_t>(p->ncomp())) + " expected");
+    if (!all_finite(v)) throw bad("node property '" + name + "' holds NaN or inf");
+    prop_data.emplace_back(p, std::move(v));
   }
   for (auto& [name, p] : nodes_.properties())
     if (p->options().restart && !h5::exists(props, name))
       throw InputError("checkpoint '" + path + "' lacks node property '" + name +
                        "' that this scene uses: the deck differs from the one that wrote it");
-  auto chains = h5::open_group(f, "chains");
-  for (auto& c : topo_.chains) {
-    if (!h5::exists(chains, c.name))
-      throw InputError("checkpoint '" + path + "' has no chain '" + c.name + "'");
-    auto g = h5::open_group(chains, c.name);
-    auto idx = h5::read_doubles(g, "nodes");
-    c.nodes.assign(idx.begin(), idx.end());
-    c.rest_length = h5::read_doubles(g, "rest_length");
+  std::map<std::string, double> energy;
+  auto en = h5::open_group(st, "energy");
+  for (auto& k : h5::children(en)) {
+    auto v = h5::read_doubles(en, k);
+    if (v.size() != 1 || !std::isfinite(v[0]))
+      throw bad("dataset state/energy/" + k + " must hold one finite number");
+    energy[k] = v[0];
+  }
+  std::mt19937_64 rng_read;
+  {
+    std::istringstream rng(h5::read_string(st, "rng"));
+    if (!(rng >> rng_read)) throw bad("dataset state/rng is not a random-stream state");
+  }
+
+  // everything the core reads is checked: into the scene
+  nodes_.resize(n);
+  unflat3(pos, nodes_.x);
+  unflat3(vel, nodes_.v);
+  unflat3(force, nodes_.f);
+  nodes_.mass = mass;
+  for (auto& [p, v] : prop_data) p->from_flat(v);
+  {
+    std::size_t k = 0;
+    for (auto& c : topo_.chains) {
+      c.nodes = std::move(chain_data[k].first);
+      c.rest_length = std::move(chain_data[k].second);
+      ++k;
+    }
   }
   auto styles = h5::open_group(f, "styles");
   for (Style* s : this->styles()) load_style(styles, *s);
-  std::istringstream rng(h5::read_string(st, "rng"));
-  rng >> rng_;
+  // the styles' own state refers to nodes and edges: each checks its indices
+  for (Style* s : this->styles()) {
+    const std::string problem = s->check_loaded(*context_);
+    if (!problem.empty())
+      throw bad("the saved state of '" + s->id() + "' (" + s->style_name() + "): " + problem);
+  }
+  rng_ = rng_read;
   step = static_cast<long>(sc[0]);
   time = sc[1];
   dt = sc[2];
   forces_valid = sc[3] != 0.0;
   energy_scale_ = sc[5];
   state_epoch = static_cast<long>(sc[6]);
-  energy_.clear();
-  auto en = h5::open_group(st, "energy");
-  for (auto& k : h5::children(en)) energy_[k] = h5::read_doubles(en, k)[0];
+  energy_ = std::move(energy);
   for (auto& c : topo_.chains) groups_[c.name] = c.nodes;
 }
 

@@ -216,6 +216,8 @@ class Simulation {
 
   // --- restart files (HDF5)
   void write_checkpoint(const std::string& path);
+  // Refuses, naming the file and the dataset, a file whose shapes, indices or values do
+  // not fit the scene (a foreign, damaged or hand-edited file).
   void read_checkpoint(const std::string& path);
 
   // Lines printed to the console (thermo, schedule); tests may silence them.
@@ -223,6 +225,7 @@ class Simulation {
 
  private:
   void setup_run();
+  void read_checkpoint_checked(const std::string& path);
   // Resolves which fixes act at which stage and lets styles bind to the scene.
   void build_schedule();
   void check_guard(long step_in_run);

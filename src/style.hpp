@@ -32,6 +32,14 @@ inline const std::vector<double>* load_measured(const StateMap& st, std::size_t 
   return it != st.end() && it->second.size() == n ? &it->second : nullptr;
 }
 
+// An index read from a checkpoint, or -1 if the number is none (negative, fractional,
+// NaN, beyond int): check_loaded() then reports it instead of indexing with it.
+inline int saved_index(double d) {
+  return d >= 0 && d < 2147483647.0 && d == static_cast<double>(static_cast<long long>(d))
+             ? static_cast<int>(d)
+             : -1;
+}
+
 class Style {
  public:
   // Whether the family's constructors and calls take the Context (else the Simulation).
@@ -51,6 +59,9 @@ class Style {
   virtual void attach(Context&) {}
   virtual void save_state(StateMap&) const {}
   virtual void load_state(const StateMap&) {}
+  // After a checkpoint was read (nodes, chains and every style's state in place): what is
+  // wrong with the loaded state (indices past the nodes or edges, short arrays), or "".
+  virtual std::string check_loaded(const Context&) const { return ""; }
   // The guard's last good state (src/simulation_guard.cpp): keep() records what save_state()
   // writes, restore_kept() puts it back after diverged steps, so that a rollback and the
   // last-good file hold no state of the bad steps. Styles whose state is large (pair lists)

@@ -295,6 +295,9 @@ class WireInjectionFix : public FixStyle {
         channels_[i].anchor = Vec3(ch[i], c_.y(), 0.0);
     }
     auto& s = st.at("scalars");
+    if (s.size() < 6)
+      throw InputError("fix style 'inject/wire': the checkpoint's scalars hold " +
+                       std::to_string(s.size()) + " values, at least 6 expected");
     force_ = s[0];
     avg_ = s[1];
     phi_ = s[2];
@@ -311,7 +314,21 @@ class WireInjectionFix : public FixStyle {
     history_.clear();
     for (size_t i = 0; i + 1 < h.size(); i += 2) history_.push_back({h[i], h[i + 1]});
     auto& dr = st.at("driven");
-    driven_.assign(dr.begin(), dr.end());
+    driven_.clear();
+    bad_driven_ = false;
+    for (double d : dr) {
+      bad_driven_ = bad_driven_ || !(d >= 0 && d < 2147483647.0 && d == std::floor(d));
+      driven_.push_back(bad_driven_ ? 0 : static_cast<int>(d));
+    }
+  }
+  std::string check_loaded(const Context& sim) const override {
+    const std::size_t n = sim.nodes().size();
+    for (int i : driven_)
+      if (bad_driven_ || static_cast<std::size_t>(i) >= n)
+        return "a driven node index is not one of the " + std::to_string(n) + " nodes";
+    if (!(span_ >= 0) || !std::isfinite(sum_) || !std::isfinite(force_) || !std::isfinite(avg_))
+      return "the injection-force window holds NaN or a negative span";
+    return "";
   }
 
  private:
@@ -393,6 +410,7 @@ class WireInjectionFix : public FixStyle {
   Property<int>* held_ = nullptr;  // rod.q.fixed: the frames the channel prescribes
   std::vector<Channel> channels_;
   std::vector<int> driven_;  // nodes this fix moves kinematically
+  bool bad_driven_ = false;  // a checkpoint held a driven index that is not an index
   Property<int>* mask_ = nullptr;
   double force_ = 0, avg_ = 0, phi_ = 0, injected_ = 0, sum_ = 0, span_ = 0;
   long since_renew_ = 0;

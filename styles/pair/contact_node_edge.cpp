@@ -259,11 +259,11 @@ class NodeEdgeContactPair : public PairStyle {
     auto& h = st.at("history");
     for (size_t k = 0; k + 7 <= h.size(); k += 7) {
       Entry e;
-      e.node = static_cast<int>(h[k]);
-      e.edge = static_cast<int>(h[k + 1]);
+      e.node = saved_index(h[k]);
+      e.edge = saved_index(h[k + 1]);
       e.flags =
           static_cast<std::uint8_t>((h[k + 4] != 0 ? kStick : 0) | (h[k + 5] != 0 ? kActive : 0));
-      e.side = static_cast<std::int8_t>(h[k + 6]);
+      e.side = static_cast<std::int8_t>(std::abs(h[k + 6]) <= 1 ? h[k + 6] : 2);
       list_.push_back(e);
       xi_.emplace_back(h[k + 2], h[k + 3], 0);
     }
@@ -275,6 +275,21 @@ class NodeEdgeContactPair : public PairStyle {
     }
     tails_from_ids_ = true;
     schedule_.load(st);
+  }
+  std::string check_loaded(const Context& sim) const override {
+    std::size_t edges = 0;
+    for (auto* c : select_chains(sim, names_)) edges += static_cast<std::size_t>(c->n_edges());
+    const std::size_t n = sim.nodes().size();
+    for (std::size_t k = 0; k < list_.size(); ++k) {
+      const Entry& e = list_[k];
+      if (e.node < 0 || static_cast<std::size_t>(e.node) >= n || e.edge < 0 ||
+          static_cast<std::size_t>(e.edge) >= edges || std::abs(e.side) > 1 || !xi_[k].allFinite())
+        return "pair " + std::to_string(k + 1) + " of the history (node " +
+               std::to_string(e.node + 1) + ", edge " + std::to_string(e.edge + 1) +
+               ") is not a node and an edge of its chains (" + std::to_string(n) + " nodes, " +
+               std::to_string(edges) + " edges), or holds NaN";
+    }
+    return "";
   }
 
  private:

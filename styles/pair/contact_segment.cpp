@@ -198,8 +198,8 @@ class SegmentContactPair : public PairStyle {
     auto& h = st.at("history");
     for (size_t k = 0; k + 7 <= h.size(); k += 7) {
       Entry e;
-      e.e1 = static_cast<int>(h[k]);
-      e.e2 = static_cast<int>(h[k + 1]);
+      e.e1 = saved_index(h[k]);
+      e.e2 = saved_index(h[k + 1]);
       e.st.xi = Vec3(h[k + 2], h[k + 3], h[k + 4]);
       e.st.stick = h[k + 5] != 0;
       e.st.active = h[k + 6] != 0;
@@ -213,6 +213,19 @@ class SegmentContactPair : public PairStyle {
     }
     tails_from_ids_ = true;
     schedule_.load(st);
+  }
+  std::string check_loaded(const Context& sim) const override {
+    std::size_t edges = 0;
+    for (auto* c : select_chains(sim, names_)) edges += static_cast<std::size_t>(c->n_edges());
+    for (std::size_t k = 0; k < list_.size(); ++k) {
+      const Entry& e = list_[k];
+      if (e.e1 < 0 || e.e2 < 0 || static_cast<std::size_t>(std::max(e.e1, e.e2)) >= edges ||
+          !e.st.xi.allFinite())
+        return "pair " + std::to_string(k + 1) + " of the history (edges " +
+               std::to_string(e.e1 + 1) + ", " + std::to_string(e.e2 + 1) +
+               ") is not a pair of the " + std::to_string(edges) + " edges, or holds NaN";
+    }
+    return "";
   }
 
  private:

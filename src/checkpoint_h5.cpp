@@ -1,4 +1,7 @@
 // Checkpoints (restart files) in HDF5, written atomically: temp file + rename.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -36,6 +39,14 @@ void save_style(hid_t parent, const Style& s) {
   auto g = h5::create_group(parent, group_name(s));
   for (auto& [k, v] : st) h5::write_doubles(g, k, v, {v.size()});
 }
+// fsync of a file or a folder; a file system that cannot sync a folder is not an error.
+void sync_path(const std::string& path, bool folder) {
+  const int fd = ::open(path.c_str(), folder ? (O_RDONLY | O_DIRECTORY) : O_RDONLY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 void load_style(hid_t parent, Style& s) {
   if (!h5::exists(parent, group_name(s))) return;
   auto g = h5::open_group(parent, group_name(s));
@@ -83,8 +94,13 @@ void Simulation::write_checkpoint(const std::string& path) {
     for (Style* s : this->styles()) save_style(styles, *s);
     H5Fflush(f, H5F_SCOPE_GLOBAL);
   }
+  // durable before it replaces the old one: the data on disk, then the rename in its folder
+  // (a power loss leaves the old checkpoint or the new one, never a torn file)
+  sync_path(tmp, false);
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw InputError("cannot move checkpoint " + tmp + " to " + path);
+  const auto slash = path.find_last_of('/');
+  sync_path(slash == std::string::npos ? "." : path.substr(0, slash + 1), true);
 }
 
 void Simulation::read_checkpoint(const std::string& path) {

@@ -1,5 +1,7 @@
 #include "lua_binding.hpp"
 
+#include <csignal>
+
 #include <lua.hpp>
 
 #include <algorithm>
@@ -24,11 +26,25 @@ namespace {
 
 const char* kSimMeta = "slender.Simulation";
 
+// The one process-wide datum: the signal that asked the deck to stop (SIGINT, SIGTERM). A
+// signal belongs to the process, not to a simulation; every simulation of the deck watches
+// this flag and stops cleanly after its step. A second signal ends the process at once.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  if (g_stop_signal != 0) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+    return;
+  }
+  g_stop_signal = sig;
+}
+
 // Per-deck context kept in the Lua state's extra space: no globals.
 struct DeckContext {
   DeckOptions opt;
   std::set<std::string> vars_read;  // -v names the deck asked for (slender.var)
   bool instability = false;
+  bool interrupted = false;
   std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
 };
 DeckContext*& context(lua_State* L) {
@@ -258,6 +274,7 @@ int l_simulation(lua_State* L) {
                                           static_cast<std::uint64_t>(p.integer("seed")));
   sim->verbose = !(p.boolean("quiet") || context(L)->opt.quiet);
   sim->set_threads(deck_threads(context(L)->opt));
+  if (context(L)->opt.catch_signals) sim->watch_interrupt(&g_stop_signal);
   auto* box = static_cast<SimBox*>(lua_newuserdatauv(L, sizeof(SimBox), 1));
   box->sim = sim.release();
   luaL_setmetatable(L, kSimMeta);
@@ -735,6 +752,12 @@ int guarded(lua_State* L) {
   } catch (const LocatedError& e) {
     lua_pushstring(L, e.what());
     failed = true;
+  } catch (const InterruptedError& e) {
+    context(L)->interrupted = true;
+    luaL_where(L, 1);
+    lua_pushstring(L, e.what());
+    lua_concat(L, 2);
+    failed = true;
   } catch (const InstabilityError& e) {
     context(L)->instability = true;
     luaL_where(L, 1);
@@ -860,13 +883,22 @@ int run_deck(const DeckOptions& opt) {
   lua_pop(L, 1);
 
   int code = 0;
+  // SIGINT / SIGTERM: finish the step, write a last frame and checkpoint, exit 130
+  using Handler = void (*)(int);
+  Handler old_int = SIG_DFL, old_term = SIG_DFL;
+  if (opt.catch_signals) {
+    g_stop_signal = 0;
+    old_int = std::signal(SIGINT, on_stop_signal);
+    old_term = std::signal(SIGTERM, on_stop_signal);
+  }
   lua_pushcfunction(L, traceback_free_handler);
   if (luaL_loadfile(L, opt.path.c_str()) != LUA_OK) {
     std::fprintf(stderr, "slender: error: %s\n", lua_tostring(L, -1));
     code = 1;
   } else if (lua_pcall(L, 0, 0, -2) != LUA_OK) {
-    std::fprintf(stderr, "slender: error: %s\n", lua_tostring(L, -1));
-    code = context(L)->instability ? 3 : 1;
+    const bool stopped = context(L)->interrupted;
+    std::fprintf(stderr, "slender: %s: %s\n", stopped ? "stopped" : "error", lua_tostring(L, -1));
+    code = stopped ? 130 : context(L)->instability ? 3 : 1;
   }
   std::fflush(stdout);
   DeckContext* ctx = context(L);
@@ -881,6 +913,10 @@ int run_deck(const DeckOptions& opt) {
                      name.c_str(), value.c_str(), name.c_str());
   lua_close(L);  // collects simulations: outputs are flushed and closed
   delete ctx;
+  if (opt.catch_signals) {
+    std::signal(SIGINT, old_int);
+    std::signal(SIGTERM, old_term);
+  }
   return code;
 }
 

@@ -373,34 +373,31 @@ double Simulation::max_force() const {
 double Simulation::omega_max(std::string* who) const {
   // Independent stiff terms add in omega^2 (Gershgorin-style upper bound).
   double w2 = 0.0, best = 0.0;
-  auto take = [&](double w, const std::string& name) {
+  for (Style* s : styles()) {
+    const double w = s->max_frequency(*context_);
     w2 += w * w;
     if (w > best) {
       best = w;
-      if (who) *who = name;
+      if (who) *who = std::string(s->family_name()) + " " + s->id();
     }
-  };
-  for (auto& s : shells_) take(s->max_frequency(*context_), "shell " + s->id());
-  for (auto& b : bonds_) take(b->max_frequency(*context_), "bond " + b->id());
-  for (auto& p : pairs_) take(p->max_frequency(*context_), "pair " + p->id());
-  for (auto& f : fixes_) take(f->max_frequency(*context_), "fix " + f->id());
+  }
   return std::sqrt(w2);
 }
 void Simulation::cache_frequencies() {
   omega2_fixed_ = 0.0;
   measuring_.clear();
-  for (auto& sh : shells_) omega2_fixed_ += std::pow(sh->max_frequency(*context_), 2);
-  for (auto& b : bonds_) omega2_fixed_ += std::pow(b->max_frequency(*context_), 2);
-  for (auto& p : pairs_)
-    measuring_.push_back({p.get(), p.get(), nullptr, p->max_frequency(*context_)});
-  for (auto& f : fixes_)
-    measuring_.push_back({f.get(), nullptr, f.get(), f->max_frequency(*context_)});
+  for (Style* s : styles()) {
+    if (s->measures_frequency())
+      measuring_.push_back({s, s->max_frequency(*context_)});
+    else
+      omega2_fixed_ += std::pow(s->max_frequency(*context_), 2);
+  }
 }
 
 double Simulation::omega_now(std::string* who) const {
   double w2 = omega2_fixed_, best = 0.0;
   for (const auto& m : measuring_) {
-    const double measured = m.pair ? m.pair->measured_frequency() : m.fix->measured_frequency();
+    const double measured = m.style->measured_frequency();
     const double w = std::max(m.nominal, measured);
     w2 += w * w;
     if (who && measured > m.nominal && w > best) {
@@ -506,12 +503,10 @@ void Simulation::setup_run() {
     if (w > 0) std::printf(" (stable estimate %.4g, stiffest: %s)", suggest_dt(1.0), who.c_str());
     // every term's nominal highest frequency: which one limits the step
     std::printf("\n  omega by term:");
-    for (auto& sh : shells_)
-      std::printf(" shell %s %.4g;", sh->id().c_str(), sh->max_frequency(*context_));
-    for (auto& b : bonds_)
-      std::printf(" bond %s %.4g;", b->id().c_str(), b->max_frequency(*context_));
-    for (const auto& m : measuring_)
-      if (m.nominal > 0) std::printf(" %s %.4g;", m.style->id().c_str(), m.nominal);
+    for (Style* st : styles()) {
+      const double w = st->max_frequency(*context_);
+      if (w > 0) std::printf(" %s %s %.4g;", st->family_name(), st->id().c_str(), w);
+    }
     std::printf("\n  schedule [priority]:\n");
     std::string lines = schedule_.describe();
     for (size_t a = 0, b; a < lines.size(); a = b + 1) {
@@ -577,6 +572,7 @@ void Simulation::run(const RunOptions& opt) {
     integrator_->step(*this);
     ++step;
     time += dt;
+    if (interrupted() && stop_reason_.empty()) stop_reason_ = "interrupted by a signal";
     after_step(k, k == opt.steps || !stop_reason_.empty(), t_start);
     if (!stop_reason_.empty()) {
       if (verbose) std::printf("run stopped at step %ld: %s\n", step, stop_reason_.c_str());
@@ -604,6 +600,37 @@ void Simulation::run(const RunOptions& opt) {
   last_stop_ = stop_reason_;
   stop_reason_.clear();
   for (auto& d : dumps_) d->flush();
+  if (interrupted()) finish_interrupted();
+}
+
+void Simulation::finish_interrupted() {
+  // The last step is complete and the guard has passed it (after_step ran with last =
+  // true): a last frame of every dump that did not just write one, then the checkpoint.
+  std::string where;
+  bool checkpointed = false;
+  for (auto& d : dumps_) {
+    if (!d->cadence().due_at(step, time)) d->write(*this);
+    d->flush();
+    if (d->style_name() == "checkpoint") checkpointed = true;
+  }
+  if (checkpointed) {
+    where = "the checkpoint dump's file";
+  } else {
+#ifdef SLENDER_HAVE_HDF5
+    write_checkpoint(interrupt_file);
+    where = interrupt_file;
+#else
+    where = "nowhere (built without HDF5: no checkpoints)";
+#endif
+  }
+  const int sig = static_cast<int>(*interrupt_);
+  throw InterruptedError(std::string("interrupted by ") +
+                         (sig == SIGINT    ? "SIGINT"
+                          : sig == SIGTERM ? "SIGTERM"
+                                           : "a signal") +
+                         " at step " + std::to_string(step) + " (time " + std::to_string(time) +
+                         "); outputs flushed, last state written to " + where +
+                         " (continue with sim:read_checkpoint)");
 }
 
 #ifndef SLENDER_HAVE_HDF5

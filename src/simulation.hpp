@@ -2,6 +2,7 @@
 // There is no global state; several Simulations can live in one process.
 #pragma once
 
+#include <csignal>
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -28,6 +29,11 @@ namespace slender {
 
 // The run became unstable; the message says what, when, and which dt is stable.
 struct InstabilityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// A signal (SIGINT, SIGTERM) asked the run to stop: it finished its step, wrote a last frame
+// of every dump and a checkpoint; the message says where.
+struct InterruptedError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
@@ -222,9 +228,20 @@ class Simulation {
 
   // Lines printed to the console (thermo, schedule); tests may silence them.
   bool verbose = true;
+  // A flag a signal handler sets to the signal's number (slender's main sets SIGINT and
+  // SIGTERM): a run or minimisation then stops after its step, writes a last frame of every
+  // dump and a checkpoint (its checkpoint dump, else interrupt_file) and throws
+  // InterruptedError. Null: not watched.
+  void watch_interrupt(const volatile std::sig_atomic_t* flag) { interrupt_ = flag; }
+  std::string interrupt_file = "slender_interrupted.h5";
 
  private:
   void setup_run();
+  bool interrupted() const { return interrupt_ && *interrupt_ != 0; }
+  // After a run or minimisation stopped for a signal: the last frame and checkpoint, then
+  // InterruptedError.
+  [[noreturn]] void finish_interrupted();
+  const volatile std::sig_atomic_t* interrupt_ = nullptr;
   void read_checkpoint_checked(const std::string& path);
   // Resolves which fixes act at which stage and lets styles bind to the scene.
   void build_schedule();
@@ -279,12 +296,10 @@ class Simulation {
   double energy_scale_ = 0.0;
   // nominal frequencies cached at the start of a run (a shell whose growth stiffens it
   // within a run is not followed): omega^2 of the terms that measure nothing, and each
-  // contact pair or fix with its nominal omega
+  // style that measures its contacts (pairs, fixes) with its nominal omega
   double omega2_fixed_ = 0.0;
   struct Measuring {
     const Style* style;
-    const PairStyle* pair;  // one of pair and fix is set
-    const FixStyle* fix;
     double nominal;
   };
   std::vector<Measuring> measuring_;

@@ -46,10 +46,15 @@ long Simulation::minimize(double ftol, long max_steps, const std::string& method
       ++step;
       if (clock) time += dt;
       after_step(taken + 1, false, t0);
+      if (interrupted()) {
+        ++taken;
+        break;
+      }
     }
     check_guard(taken);
     if (thermo_cadence().active() && !thermo_written_) write_thermo(false);
     for (auto& d : dumps_) d->flush();
+    if (interrupted()) finish_interrupted();
   } catch (...) {
     if (!dynamics) integrator_ = std::move(saved);
     throw;

@@ -50,6 +50,15 @@ class Style {
   const std::string& id() const { return id_; }
   void set_id(const std::string& s) { id_ = s; }
 
+  // The family this style belongs to ("bond", "pair", ...), for messages and summaries.
+  virtual const char* family_name() const = 0;
+  // Highest angular frequency this style can excite (0 for styles that add no force), for
+  // the stable time step; styles that measure their contacts also report the frequency
+  // measured at the last evaluation, which an adaptive step follows (Simulation::omega_now).
+  virtual double max_frequency(const Context&) const { return 0.0; }
+  virtual bool measures_frequency() const { return false; }
+  virtual double measured_frequency() const { return 0.0; }
+
   // Order within each stage of the schedule (src/schedule.hpp): lower first; equal
   // priorities keep the order the deck added the styles. Family defaults: shells -100,
   // bonds and fixes 0, pairs 100.
@@ -90,13 +99,13 @@ class Style {
 class BondStyle : public Style {
  public:
   static const char* family() { return "bond"; }
+  const char* family_name() const override { return family(); }
   static constexpr bool kSeesContext = true;
   // Adds forces to nodes().f and returns the energy of this style.
   virtual double compute(Context& sim) = 0;
   // Energy category for thermo ("stretch", "bend", ...).
   virtual const char* energy_category() const = 0;
-  // Highest angular frequency this style can excite, for the stable time step.
-  virtual double max_frequency(const Context& sim) const = 0;
+  double max_frequency(const Context& sim) const override = 0;
   // Chains this instance acts on.
   virtual void setup(Context&) {}
 };
@@ -105,14 +114,15 @@ class BondStyle : public Style {
 class PairStyle : public Style {
  public:
   static const char* family() { return "pair"; }
+  const char* family_name() const override { return family(); }
   static constexpr bool kSeesContext = true;
   int priority() const override { return 100; }
   virtual void setup(Context&) {}
   virtual double compute(Context& sim) = 0;
-  virtual double max_frequency(const Context& sim) const = 0;
-  // Highest frequency measured at the last force evaluation (contacts as they are now);
-  // 0 where a style measures none. The adaptive step uses the larger of the two.
-  virtual double measured_frequency() const { return 0.0; }
+  double max_frequency(const Context& sim) const override = 0;
+  // The frequency of its contacts as they are now, at the last force evaluation (0 where
+  // none); the adaptive step uses the larger of this and max_frequency.
+  bool measures_frequency() const override { return true; }
   // The neighbour search this pair builds (for the scene inventory), e.g. "linked cells".
   virtual std::string neighbor_structure() const { return "pair list"; }
 };
@@ -130,6 +140,7 @@ inline constexpr int kMeasuresForces = 1000;
 class FixStyle : public Style {
  public:
   static const char* family() { return "fix"; }
+  const char* family_name() const override { return family(); }
   static constexpr bool kSeesContext = true;
   virtual unsigned stages() const = 0;
   virtual void setup(Context&) {}
@@ -139,9 +150,8 @@ class FixStyle : public Style {
   // Adds forces; returns the potential energy of conservative fixes (else 0).
   virtual double post_force(Context&) { return 0.0; }
   virtual void end_of_step(Context&) {}
-  virtual double max_frequency(const Context&) const { return 0.0; }
-  // As PairStyle::measured_frequency (walls in contact now).
-  virtual double measured_frequency() const { return 0.0; }
+  // Fixes report their contacts' frequency as pairs do (walls in contact now).
+  bool measures_frequency() const override { return true; }
 };
 
 // Thin shells on triangle meshes (MODELS.md §6): their own family, evaluated
@@ -149,13 +159,14 @@ class FixStyle : public Style {
 class ShellStyle : public Style {
  public:
   static const char* family() { return "shell"; }
+  const char* family_name() const override { return family(); }
   static constexpr bool kSeesContext = true;
   // first in the force stage: a shell places its ghost nodes, which bonds may read
   int priority() const override { return -100; }
   virtual void setup(Context&) {}
   // Adds forces; records its energies with Context::add_energy.
   virtual void compute(Context& sim) = 0;
-  virtual double max_frequency(const Context& sim) const = 0;
+  double max_frequency(const Context& sim) const override = 0;
 };
 
 // In-plane growth tensors G(X, t) of the multiplicative decomposition F = A G
@@ -163,6 +174,7 @@ class ShellStyle : public Style {
 class GrowthStyle : public Style {
  public:
   static const char* family() { return "growth"; }
+  const char* family_name() const override { return family(); }
   static constexpr bool kSeesContext = true;
   // 3x3 world-frame tensor; only its action on tangent vectors matters.
   virtual Eigen::Matrix3d tensor(const Vec3& X, double time) const = 0;
@@ -185,12 +197,14 @@ class GrowthStyle : public Style {
 class ComputeStyle : public Style {
  public:
   static const char* family() { return "compute"; }
+  const char* family_name() const override { return family(); }
   virtual void evaluate(Simulation& sim) = 0;
 };
 
 class DumpStyle : public Style {
  public:
   static const char* family() { return "dump"; }
+  const char* family_name() const override { return family(); }
   // When a frame is due: every N steps or every T time units (the style's every/interval).
   const Cadence& cadence() const { return cadence_; }
   virtual void write(Simulation& sim) = 0;
@@ -206,6 +220,7 @@ class DumpStyle : public Style {
 class IntegratorStyle : public Style {
  public:
   static const char* family() { return "integrator"; }
+  const char* family_name() const override { return family(); }
   // Prepares state (e.g. higher derivatives) before the first step of a run.
   virtual void setup(Simulation& sim) = 0;
   virtual void step(Simulation& sim) = 0;
@@ -243,6 +258,7 @@ class IntegratorStyle : public Style {
 class RegionStyle : public Style {
  public:
   static const char* family() { return "region"; }
+  const char* family_name() const override { return family(); }
   static constexpr bool kSeesContext = true;
   virtual bool contains(const Vec3& x) const = 0;
   // Part of the domain: a node outside every bounding region stops the run.

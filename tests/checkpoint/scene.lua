@@ -1,6 +1,6 @@
 -- A small crumpling scene (injection, node-edge contact with friction, wall with
 -- friction) for the checkpoint tests: -v mode=write runs it and writes a checkpoint,
--- -v mode=read reads one into the same scene and runs on.
+-- -v mode=read reads one into the same scene and runs on (-v out=FILE: and writes one).
 local mode = slender.var("mode", "write")
 local file = slender.var("file", "scene.h5")
 local sim = slender.simulation { dimension = 2, seed = 3, quiet = true }
@@ -12,10 +12,12 @@ sim:pair("contact/node-edge", { stiffness = 1e3, mu_static = 0.3, mu_dynamic = 0
 sim:fix("cavity", "wall/circle", { radius = r, diameter = 1.0, stiffness = 1e3, mu_static = 0.3,
                                    mu_dynamic = 0.25, openings = { math.pi } })
 sim:fix("drag", "damping/viscous", { gamma = 0.5 })
-sim:fix("feed", "inject/wire", { chain = "w", radius = r, channels = "left", speed = 0.5,
+sim:fix("feed", "inject/wire", { chain = "w", radius = r, channels = "left", speed = slender.var("speed", 0.5),
                                  perturb = 0.05 })
 sim:integrator("verlet", { dt = 0.005 })
 if mode == "read" then sim:read_checkpoint(file) end
 sim:run(slender.var("steps", 12000))
 if mode == "write" then sim:write_checkpoint(file) end
+local out = slender.var("out", "")
+if out ~= "" then sim:write_checkpoint(out) end
 slender.result { nodes = sim:value("nodes"), contacts = sim:value("contact/node-edge.contacts") }

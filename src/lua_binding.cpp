@@ -117,6 +117,8 @@ Value to_value(lua_State* L, int idx, const std::string& key) {
       if (!nums.empty()) return nums;
       return strs;
     }
+    case LUA_TFUNCTION:
+      return DeckFunction{};  // kept by the caller (a callback, a growth law)
     default:
       throw InputError("key '" + key + "' has a " + luaL_typename(L, idx) +
                        " value, which no style parameter accepts");
@@ -197,7 +199,7 @@ ParamSpec run_spec() {
   ParamSpec s("command", "run", "sim:run{...} or sim:run(steps)");
   s.integer("steps", "number of steps").required().min(0);
   s.integer("every", "steps between callback calls").def(0.0).min(0);
-  s.add("callback", ParamType::String,
+  s.add("callback", ParamType::Function,
         "function(sim) called every `every` steps; return true to stop");
   return s;
 }
@@ -421,7 +423,7 @@ int l_growth(lua_State* L) {
     else
       lua_pop(L, 1);
   }
-  auto& g = sim.add_growth(id, style, to_raw(L, 4, {"fn"}));
+  auto& g = sim.add_growth(id, style, to_raw(L, 4));
   if (g.wants_function()) {
     if (ref == LUA_NOREF)
       throw InputError("growth '" + style + "' needs fn = function(x, y, z, t)");
@@ -516,7 +518,7 @@ int l_run(lua_State* L) {
     if (s < 0 || s != std::floor(s)) throw InputError("run: steps must be a non-negative integer");
     opt.steps = static_cast<long>(s);
   } else {
-    auto p = run_spec().validate(to_raw(L, 2, {"callback"}));
+    auto p = run_spec().validate(to_raw(L, 2));
     opt.steps = p.integer("steps");
     opt.every = p.integer("every");
     lua_getfield(L, 2, "callback");

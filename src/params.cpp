@@ -51,6 +51,8 @@ const char* value_kind(const Value& v) {
       return "list of numbers";
     case 5:
       return "list of strings";
+    case 6:
+      return "function";
   }
   return "?";
 }
@@ -69,6 +71,7 @@ std::string value_text(const Value& v) {
     for (size_t i = 0; i < vs->size(); ++i) out += (i ? ", \"" : "\"") + (*vs)[i] + "\"";
     return out + "}";
   }
+  if (std::holds_alternative<DeckFunction>(v)) return "function";
   return "nil";
 }
 
@@ -213,7 +216,10 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
         break;
       }
       case ParamType::Function:
-        throw InputError(who + ": key '" + d.name + "' must be a Lua function");
+        if (!std::holds_alternative<DeckFunction>(v))
+          throw InputError(who + ": key '" + d.name + "' must be a Lua function, got a " +
+                           value_kind(v));
+        break;
       case ParamType::StringList:
         if (std::holds_alternative<std::string>(v))
           v = std::vector<std::string>{std::get<std::string>(v)};

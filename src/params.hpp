@@ -22,9 +22,15 @@ enum class ParamType { Real, Int, Bool, String, Vector, RealOrAuto, StringList, 
 
 const char* type_name(ParamType t);
 
+// A function given in a deck (a run callback, a growth law): validated like any other
+// parameter (declared with ParamType::Function); the deck layer keeps the function itself.
+struct DeckFunction {
+  bool operator==(const DeckFunction&) const = default;
+};
+
 // A raw value as it comes from the deck, before validation.
 using Value = std::variant<std::monostate, double, bool, std::string, std::vector<double>,
-                           std::vector<std::string>>;
+                           std::vector<std::string>, DeckFunction>;
 using RawParams = std::map<std::string, Value>;
 
 struct ParamDecl {

@@ -14,6 +14,10 @@ class FunctionGrowth : public GrowthStyle {
     ParamSpec s("growth", name,
                 "growth tensor from a deck function fn(x, y, z, t) of the reference position and "
                 "time: a scalar, {gxx, gxy, gyx, gyy} or nine numbers");
+    s.add("fn", ParamType::Function,
+          "fn(x, y, z, t) of the reference position and time, returning a scalar (isotropic), "
+          "{gxx, gxy, gyx, gyy} (in-plane) or nine numbers")
+        .required();
     s.boolean("time_dependent", "re-evaluate whenever the time changes").def(false);
     return s;
   }

@@ -652,3 +652,24 @@ TEST(SceneBuild, MeshFromParameters) {
                InputError);
 }
 #endif
+
+// Function-valued parameters (a run callback, a growth law) go through the declaration
+// like any other: documented, required or optional, and a value of another type refused.
+TEST(ParamSpec, FunctionParametersAreDeclaredAndChecked) {
+  ParamSpec s("growth", "function", "test");
+  s.add("fn", ParamType::Function, "the law").required();
+  EXPECT_NO_THROW(s.validate(RawParams{{"fn", DeckFunction{}}}));
+  try {
+    s.validate(RawParams{{"fn", 3.0}});
+    FAIL() << "a number was accepted as a function";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("must be a Lua function, got a number"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(s.validate(RawParams{}), InputError);
+  EXPECT_NE(s.help_text().find("fn (function, required)"), std::string::npos);
+  // a function where a number is declared is a type error, not silently dropped
+  ParamSpec n("fix", "x", "test");
+  n.real("k", "a number");
+  EXPECT_THROW(n.validate(RawParams{{"k", DeckFunction{}}}), InputError);
+}

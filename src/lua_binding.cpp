@@ -754,19 +754,10 @@ int guarded(lua_State* L) {
   } catch (const LocatedError& e) {
     lua_pushstring(L, e.what());
     failed = true;
-  } catch (const InterruptedError& e) {
-    context(L)->interrupted = true;
-    luaL_where(L, 1);
-    lua_pushstring(L, e.what());
-    lua_concat(L, 2);
-    failed = true;
-  } catch (const InstabilityError& e) {
-    context(L)->instability = true;
-    luaL_where(L, 1);
-    lua_pushstring(L, e.what());
-    lua_concat(L, 2);
-    failed = true;
   } catch (const std::exception& e) {
+    // the exit code follows the kind: 130 stopped by a signal, 3 unstable, else 1
+    if (dynamic_cast<const InterruptedError*>(&e)) context(L)->interrupted = true;
+    if (dynamic_cast<const InstabilityError*>(&e)) context(L)->instability = true;
     luaL_where(L, 1);
     lua_pushstring(L, e.what());
     lua_concat(L, 2);

@@ -32,7 +32,8 @@ class RebuildSchedule {
   // re-bound, a rollback): every list is.
   bool due(Context& sim, bool force) {
     auto& service = sim.neighbors();
-    if (handle_ < 0) handle_ = service.request(this, skin_, every_);
+    // rebuild_every replaces the displacement criterion (the skin still sizes the list)
+    if (handle_ < 0) handle_ = service.request(this, every_ > 0 ? 0.0 : skin_, every_);
     if (force) service.invalidate();
     return service.due(handle_, sim.nodes().x, sim.step());
   }

@@ -19,8 +19,9 @@ namespace slender {
 
 class NeighborService {
  public:
-  // Registers a list (once per owner; a later call updates its skin and interval). `every`
-  // > 0 rebuilds it every that many steps instead of on displacement. Returns its handle.
+  // Registers a list (once per owner; a later call updates its skin and interval). `skin`
+  // > 0: rebuilt when a node moved more than skin/2; `every` > 0: rebuilt at least every that
+  // many steps (either or both). Returns its handle.
   int request(const void* owner, double skin, long every) {
     for (std::size_t h = 0; h < req_.size(); ++h)
       if (req_[h].owner == owner) {
@@ -71,11 +72,8 @@ class NeighborService {
     bool all = force_ || x_.size() != x.size();
     double half_skin2 = std::numeric_limits<double>::infinity();
     for (auto& r : req_) {
-      if (r.every > 0) {
-        all = all || step - r.last >= r.every;
-      } else {
-        half_skin2 = std::min(half_skin2, 0.25 * r.skin * r.skin);
-      }
+      if (r.every > 0) all = all || step - r.last >= r.every;
+      if (r.skin > 0) half_skin2 = std::min(half_skin2, 0.25 * r.skin * r.skin);
     }
     if (!all && half_skin2 < std::numeric_limits<double>::infinity()) {
       ++scans_;

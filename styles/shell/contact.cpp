@@ -4,7 +4,8 @@
 // Broad phase: triangle AABBs (current control mesh, inflated by (h + skin)/2) in
 // cubic voxels of edge max(largest AABB, h), so a box spans at most 2 voxels per
 // axis (MODELS.md suggests twice that; smaller voxels hold fewer pairs); a pair list rebuilt every
-// `rebuild_every` steps or as soon as a node has moved skin/2 since the last build.
+// `rebuild_every` steps or as soon as a node has moved skin/2 since the last build, as the
+// scene's neighbour service decides for every list at once (src/neighbors.hpp).
 // Topology check: the smallest reference distance d_ref between the vertices of the
 // two triangles; pairs with d_ref = 0 (neighbours) never collide, pairs with
 // d_ref <= h (near neighbours) only while their current normals oppose (n1.n2 < 0,
@@ -161,8 +162,12 @@ class ShellContactPair : public PairStyle {
   double compute(Context& sim) override {
     auto& x = sim.nodes().x;
     auto& f = sim.nodes().f;
-    if (needs_rebuild(sim)) rebuild(x);
-    ++since_build_;
+    if (handle_ < 0) handle_ = sim.neighbors().request(this, skin_, every_);
+    if (need_build_) sim.neighbors().invalidate();
+    if (sim.neighbors().due(handle_, x, sim.step())) {
+      rebuild(x);
+      sim.neighbors().built(handle_, sim.step());
+    }
     const auto& T = mesh_->mesh.tri;
     double energy = 0;
     contacts_ = 0;
@@ -316,7 +321,7 @@ class ShellContactPair : public PairStyle {
       far_contacts_ = static_cast<int>((*m)[1]);
       force_sum_ = (*m)[2];
     }
-    built_x_.clear();  // rebuild the list (with this history) at the next evaluation
+    need_build_ = true;  // rebuild the list (with this history) at the next evaluation
     pairs_.clear();
   }
 
@@ -407,22 +412,12 @@ class ShellContactPair : public PairStyle {
     return false;
   }
 
-  bool needs_rebuild(const Context& sim) const {
-    if (built_x_.empty() || since_build_ >= every_) return true;
-    const double lim = 0.25 * skin_ * skin_;
-    for (int i = 0; i < mesh_->n_real_nodes; ++i)
-      if ((sim.nodes().x[base_ + i] - built_x_[i]).squaredNorm() > lim) return true;
-    return false;
-  }
-
   void rebuild(const std::vector<Vec3>& x) {
     ++rebuilds_;
-    since_build_ = 0;
+    need_build_ = false;
     const auto& T = mesh_->mesh.tri;
     const auto& X = mesh_->mesh.x;  // reference positions
     const int nt = mesh_->n_real_tris;
-    built_x_.resize(mesh_->n_real_nodes);
-    for (int i = 0; i < mesh_->n_real_nodes; ++i) built_x_[i] = x[base_ + i];
     const double pad = 0.5 * (h_ + skin_);
     std::vector<Vec3> lo(nt), hi(nt);
     double extent = h_;
@@ -498,8 +493,10 @@ class ShellContactPair : public PairStyle {
   std::vector<shell::FeatureMask> masks_;
   std::unordered_map<std::uint64_t, FrictionState> restored_;  // from a checkpoint
   std::vector<Candidate> pairs_;
-  std::vector<Vec3> built_x_, box_lo_, box_hi_;
-  long since_build_ = 0, rebuilds_ = 0;
+  std::vector<Vec3> box_lo_, box_hi_;
+  int handle_ = -1;  // this list's request to the neighbour service
+  bool need_build_ = true;
+  long rebuilds_ = 0;
   int contacts_ = 0, far_contacts_ = 0;
   double force_sum_ = 0;
   std::vector<double> face_flag_;

@@ -77,7 +77,7 @@ TEST(NeighborService, OneDecisionForAllListsAtTheSmallestSkin) {
 TEST(NeighborService, FixedIntervalsNeedNoScan) {
   NeighborService n;
   int owner = 0;
-  const int h = n.request(&owner, 1.0, 3);
+  const int h = n.request(&owner, 0.0, 3);  // no skin: the interval alone
   std::vector<Vec3> x(3, Vec3::Zero());
   n.begin_evaluation();
   EXPECT_TRUE(n.due(h, x, 0));
@@ -90,6 +90,31 @@ TEST(NeighborService, FixedIntervalsNeedNoScan) {
   n.begin_evaluation();
   EXPECT_TRUE(n.due(h, x, 3));
   EXPECT_EQ(n.scans(), 0);
+}
+
+// A list with a skin and an interval (the shell contact) is rebuilt by whichever comes first.
+TEST(NeighborService, SkinAndIntervalTogether) {
+  NeighborService n;
+  int owner = 0;
+  const int h = n.request(&owner, 1.0, 4);
+  std::vector<Vec3> x(3, Vec3::Zero());
+  n.begin_evaluation();
+  EXPECT_TRUE(n.due(h, x, 0));
+  n.built(h, 0);
+  n.begin_evaluation();
+  x[2].x() += 0.4;  // within half the skin
+  EXPECT_FALSE(n.due(h, x, 1));
+  n.begin_evaluation();
+  x[2].x() += 0.2;  // 0.6 > 0.5: moved too far before the interval is up
+  EXPECT_TRUE(n.due(h, x, 2));
+  n.built(h, 2);
+  for (long step = 3; step < 6; ++step) {
+    n.begin_evaluation();
+    EXPECT_FALSE(n.due(h, x, step));
+  }
+  n.begin_evaluation();
+  EXPECT_TRUE(n.due(h, x, 6));  // nothing moved, the interval is up
+  EXPECT_EQ(n.scans(), 5);      // each evaluation that the interval did not decide scanned
 }
 
 // Two contact styles in one scene (self-contact of two separate wires, different skins)

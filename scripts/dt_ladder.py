@@ -20,10 +20,11 @@ import concurrent.futures as cf
 import csv
 import math
 import os
-import subprocess
-import tempfile
+import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+import slender.run as slender_run  # noqa: E402
 
 OBSERVABLES = {
     "crumple2d": ["phi", "force", "ab_ratio", "loops", "contacts", "fractal_dimension"],
@@ -31,38 +32,22 @@ OBSERVABLES = {
 }
 
 
-def parse_result(stdout):
-    row = {}
-    for line in stdout.splitlines():
-        if line.startswith("RESULT"):
-            for kv in line.split()[1:]:
-                k, _, v = kv.partition("=")
-                try:
-                    row[k] = float(v)
-                except ValueError:
-                    row[k] = v
-    return row
-
-
-def run_deck(slender, deck_path, variables, threads=1):
+def run_deck(binary, deck_path, variables, threads=1):
     """Runs a deck with output=false, the `-v` variables and `threads` threads in a scratch
-    folder; returns its RESULT fields with status ok/failed (and the last error line)."""
-    args = [slender, "-q", "-t", str(threads), deck_path, "-v", "output=false"]
-    for v in variables:
-        args += ["-v", v]
-    with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
-    row = parse_result(p.stdout)
-    row["status"] = "ok" if p.returncode == 0 and "phi" in row else "failed"
+    folder; returns its RESULT fields (numbers as floats) with status ok/failed (and the last
+    error line)."""
+    res = slender_run.run_deck(deck_path, ["output=false"] + variables, threads=threads, binary=binary)
+    row = {k: float(v) if isinstance(v, (int, float)) else v for k, v in res.result.items()}
+    row["status"] = "ok" if res.returncode == 0 and "phi" in row else "failed"
     if row["status"] != "ok":
-        row["error"] = (p.stderr.strip().splitlines() or ["?"])[-1][:300]
+        row["error"] = (res.error or "?")[:300]
     return row
 
 
-def run(slender, examples, deck, variables, rung, seed):
+def run(binary, examples, deck, variables, rung, seed):
     integrator, dt, *extra = rung.split(":")
     row = {"rung": rung, "integrator": integrator, "dt": dt, "seed": seed}
-    row.update(run_deck(slender, os.path.join(examples, deck + ".lua"),
+    row.update(run_deck(binary, os.path.join(examples, deck + ".lua"),
                         [f"integrator={integrator}", f"dt={dt}", f"seed={seed}"] + variables + extra))
     return row
 

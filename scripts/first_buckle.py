@@ -21,15 +21,15 @@ import concurrent.futures as cf
 import csv
 import math
 import os
-import subprocess
+import sys
 import tempfile
 
-import h5py
 import numpy as np
 
-import render_wire2d
-
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from slender.io import Trajectory  # noqa: E402
+from slender.run import run_deck  # noqa: E402
 K2, L0, M = 60.0, 1.0, 1.0  # examples/crumple2d/lib/scene.lua
 
 
@@ -48,26 +48,22 @@ def measure(x, y, r):
     return abs(xa[k]) / r, float(np.abs(ya).max()), half_waves, central
 
 
-def run(slender, examples, deck, f, v, feed, seed):
+def run(binary, examples, deck, f, v, feed, seed):
     # phi counts the wire inside the cavity (fix inject/wire): the straight start spans 2r
     length = 2 * f + 2 * feed * f
     max_phi = length / (math.pi * f * f)
-    args = [slender, "-q", os.path.join(examples, "crumple2d", deck + ".lua"), "-v", f"f={f}",
-            "-v", f"s={v}", "-v", f"seed={seed}", "-v", f"max_phi={max_phi}",
-            # no periodic frames: the dump writes the state the run stops in
-            "-v", "dump_every=1000000000000"]
+    # no periodic frames: the dump writes the state the run stops in
+    variables = [f"f={f}", f"s={v}", f"seed={seed}", f"max_phi={max_phi}", "dump_every=1000000000000"]
     with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
+        res = run_deck(os.path.join(examples, "crumple2d", deck + ".lua"), variables, cwd=tmp, binary=binary)
         row = {"f": f, "speed": v, "seed": seed, "Pi": span_number(f, v), "status": "ok"}
-        if p.returncode != 0:
-            row.update(status="failed", error=(p.stderr.strip().splitlines() or ["?"])[-1][:200])
+        if res.returncode != 0:
+            row.update(status="failed", error=(res.error or "?")[:200])
             return row, None
-        with h5py.File(os.path.join(tmp, deck + ".h5"), "r") as h:
-            pos, edges, step, _, _ = render_wire2d.read_frame(h, -1, False)
-    # injected nodes are appended to the arrays: put them in chain order
-    lines = render_wire2d.polylines(edges)
-    assert len(lines) == 1, f"one open wire expected, found {len(lines)} pieces"
-    pos = pos[lines[0]]
+        with Trajectory(os.path.join(tmp, deck + ".h5")) as t:
+            chains, step = t.frame(-1), int(t.steps[-1])
+    assert len(chains) == 1, f"one open wire expected, found {len(chains)} pieces"
+    pos = chains[0]
     peak_x, amp, hw, central = measure(pos[:, 0], pos[:, 1], f)
     row.update(steps=step, peak_x_over_r=peak_x, amplitude=amp, half_waves=hw, central=central)
     return row, pos[:, :2]

@@ -21,15 +21,17 @@ import concurrent.futures as cf
 import csv
 import math
 import os
-import subprocess
+import sys
 import tempfile
 
-import h5py
 import numpy as np
 
-import render_wire2d
-
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from slender.io import Trajectory  # noqa: E402
+from slender.run import run_deck  # noqa: E402
+
+RESULT_KEYS = ("phi", "jammed", "ab_ratio", "winding", "loops", "contacts", "steps", "wall_s", "s")
 
 
 def shape_measures(pos, r):
@@ -45,31 +47,24 @@ def last_thermo(path, column):
     return float(rows[-1][column]) if rows else math.nan
 
 
-def run(slender, examples, deck, f, ratio, seed, max_phi, speed):
-    args = [slender, "-q", os.path.join(examples, "crumple2d", deck + ".lua"), "-v", f"f={f}",
-            "-v", f"hardening={ratio}", "-v", f"seed={seed}", "-v", f"max_phi={max_phi}",
-            # no periodic frames: the dump writes the state the run stops in
-            "-v", "dump_every=1000000000000", "-v", "thermo_every=10000"]
+def run(binary, examples, deck, f, ratio, seed, max_phi, speed):
+    # no periodic frames: the dump writes the state the run stops in
+    variables = [f"f={f}", f"hardening={ratio}", f"seed={seed}", f"max_phi={max_phi}",
+                 "dump_every=1000000000000", "thermo_every=10000"]
     if speed is not None:
-        args += ["-v", f"s={speed}"]
+        variables.append(f"s={speed}")
     row = {"f": f, "hardening": ratio, "seed": seed, "status": "ok"}
     with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
-        for line in p.stdout.splitlines():
-            if line.startswith("RESULT"):
-                for kv in line.split()[1:]:
-                    k, _, v = kv.partition("=")
-                    if k in ("phi", "jammed", "ab_ratio", "winding", "loops", "contacts", "steps", "wall_s", "s"):
-                        row[k] = float(v)
-        if p.returncode != 0 or "phi" not in row:
-            row.update(status="failed", error=(p.stderr.strip().splitlines() or ["?"])[-1][:200])
+        res = run_deck(os.path.join(examples, "crumple2d", deck + ".lua"), variables, cwd=tmp, binary=binary)
+        row.update({k: float(v) for k, v in res.result.items() if k in RESULT_KEYS})
+        if res.returncode != 0 or "phi" not in row:
+            row.update(status="failed", error=(res.error or "?")[:200])
             return row, None
         row["wall_contacts"] = last_thermo(os.path.join(tmp, deck + "_thermo.csv"), "cavity.contacts")
-        with h5py.File(os.path.join(tmp, deck + ".h5"), "r") as h:
-            pos, edges, _, _, _ = render_wire2d.read_frame(h, -1, False)
-    # injected nodes are appended to the arrays: put them in chain order
-    lines = render_wire2d.polylines(edges)
-    pos = pos[lines[0]] if len(lines) == 1 else pos
+        with Trajectory(os.path.join(tmp, deck + ".h5")) as t:
+            chains = t.frame(-1)
+    # in chain order (injected nodes are appended to the arrays)
+    pos = chains[0] if len(chains) == 1 else np.concatenate(chains)
     row["outer_share"], row["half_width"] = shape_measures(pos, f)
     return row, pos
 

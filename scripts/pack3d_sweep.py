@@ -16,40 +16,30 @@ import concurrent.futures as cf
 import csv
 import math
 import os
-import subprocess
-import tempfile
+import sys
 import threading
 
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from slender.run import run_deck  # noqa: E402
 FIELDS = ["setup", "R", "a_over_R", "seed", "phi", "stopped", "force_R2_over_YI", "bend_R_over_YI",
           "rg_over_R", "stretch_over_bend", "contacts", "nodes", "steps", "wall_s", "node_steps_per_s",
           "status", "error"]
 
 
 def run_one(a, setup, R, seed):
-    args = [a.slender, "-q", os.path.join(a.examples, "pack3d", setup + ".lua"), "-v", f"R={R}",
-            "-v", f"seed={seed}", "-v", "output=false"] + sum((["-v", v] for v in a.var), [])
-    with tempfile.TemporaryDirectory() as tmp:
-        try:
-            p = subprocess.run(args, cwd=tmp, capture_output=True, text=True, timeout=a.timeout)
-            rc, out, err = p.returncode, p.stdout, p.stderr
-        except subprocess.TimeoutExpired:
-            rc, out, err = -1, "", f"timeout after {a.timeout} s"
+    res = run_deck(os.path.join(a.examples, "pack3d", setup + ".lua"),
+                   [f"R={R}", f"seed={seed}", "output=false"] + a.var, timeout=a.timeout, binary=a.slender)
     row = {"setup": setup, "R": R, "a_over_R": 1.0 / R, "seed": seed}
-    res = {}
-    for line in out.splitlines():
-        if line.startswith("RESULT"):
-            res = dict(kv.partition("=")[::2] for kv in line.split()[1:])
-    if rc == 0 and res:
-        for k in FIELDS:
-            if k in res:
-                row[k] = res[k]
+    if res.ok:
+        last = res.results_text[-1]  # verbatim, as the deck printed it
+        row.update({k: last[k] for k in FIELDS if k in last})
         row["status"] = "ok"
     else:
         row["status"] = "failed"
-        row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+        row["error"] = (res.error or "?")[:200].replace(",", ";")
     return row
 
 

@@ -26,7 +26,7 @@ import csv
 import os
 import shutil
 import json
-import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -34,6 +34,8 @@ import time
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from slender.run import run_deck  # noqa: E402
 FIELDS = ["f", "s", "yield", "mu", "seed", "class", "phi", "jammed", "loops", "winding", "ab_ratio",
           "contacts", "steps", "wall_s", "dt", "status", "error"]
 DECK_DT = 0.01 * (1.0 / 1000.0) ** 0.5  # the scene's dt = 0.01 sqrt(m / k1)
@@ -61,18 +63,16 @@ def run_one(a, y, mu, seed, unstable_before=False):
 
 
 def run_once(a, y, mu, seed, dt):
-    args = [a.slender, "-q", os.path.join(a.examples, "crumple2d", "classic.lua"),
-            "-v", f"f={a.f}", "-v", f"s={a.s}", "-v", f"yield={y}", "-v", f"mu={mu}",
-            "-v", f"seed={seed}", "-v", "output=false", "-v", f"max_steps={a.max_steps}",
-            "-v", f"dt={dt!r}"]
+    deck = os.path.join(a.examples, "crumple2d", "classic.lua")
+    variables = [f"f={a.f}", f"s={a.s}", f"yield={y}", f"mu={mu}", f"seed={seed}", "output=false",
+                 f"max_steps={a.max_steps}", f"dt={dt!r}"]
     if not a.work:
-        with tempfile.TemporaryDirectory() as tmp:
-            rc, out, err = execute(a, args, tmp)
-        return parse_result(a, y, mu, seed, dt, rc, out, err)
+        res = run_deck(deck, variables, timeout=a.timeout, binary=a.slender)
+        return parse_result(a, y, mu, seed, dt, res)
     # a kept run directory: continue from the run's last checkpoint, if any
     tmp = os.path.join(a.work, f"f{a.f:g}_s{a.s:g}_y{y:g}_mu{mu:g}_seed{seed}_dt{dt:.6g}")
     os.makedirs(tmp, exist_ok=True)
-    args += ["-v", f"checkpoint_every={a.checkpoint_every}"]
+    variables.append(f"checkpoint_every={a.checkpoint_every}")
     ckpt, state_file = os.path.join(tmp, "classic_restart.h5"), os.path.join(tmp, "parts.json")
     state = json.load(open(state_file)) if os.path.exists(state_file) else {"wall": 0.0, "parts": 0}
     if os.path.exists(ckpt):
@@ -80,14 +80,14 @@ def run_once(a, y, mu, seed, dt):
         if "start" in state and os.path.getmtime(ckpt) > state["start"]:
             state["wall"] += os.path.getmtime(ckpt) - state["start"]
         shutil.copyfile(ckpt, os.path.join(tmp, "restart_in.h5"))
-        args += ["-v", "restart=restart_in.h5"]
+        variables.append("restart=restart_in.h5")
     state["start"] = time.time()
     state["parts"] += 1
     with open(state_file + ".tmp", "w") as fh:
         json.dump(state, fh)
     os.replace(state_file + ".tmp", state_file)
-    rc, out, err = execute(a, args, tmp)
-    row = parse_result(a, y, mu, seed, dt, rc, out, err)
+    res = run_deck(deck, variables, cwd=tmp, timeout=a.timeout, binary=a.slender)
+    row = parse_result(a, y, mu, seed, dt, res)
     if row.get("wall_s"):
         row["wall_s"] = f"{float(row['wall_s']) + state['wall']:.6g}"
     if row["status"] != "failed" or "timeout" not in row.get("error", ""):
@@ -110,31 +110,23 @@ def settle(work):
         print(f"{d}: {state['parts']} part(s), {state['wall']:.0f} s up to its last checkpoint")
 
 
-def execute(a, args, cwd):
-    try:
-        p = subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=a.timeout)
-        return p.returncode, p.stdout, p.stderr
-    except subprocess.TimeoutExpired:
-        return -1, "", f"timeout after {a.timeout} s"
-
-
-def parse_result(a, y, mu, seed, dt, rc, out, err):
+def parse_result(a, y, mu, seed, dt, res):
+    """The table row of a run (slender.run.RunResult): a timed-out run is failed with
+    "timeout" in its error (so a kept run directory continues later)."""
     row = {"f": a.f, "s": a.s, "yield": y, "mu": mu, "seed": seed, "dt": f"{dt:.6g}"}
-    res = {}
-    for line in out.splitlines():
-        if line.startswith("RESULT"):
-            res = dict(kv.partition("=")[::2] for kv in line.split()[1:])
-    if res and (rc == 0 or res.get("ended") == "instability"):
+    last = res.results_text[-1] if res.results_text else {}  # verbatim, as the deck printed it
+    error = (res.error or "?")[:200].replace(",", ";")
+    if last and res.status != "timeout" and (res.returncode == 0 or last.get("ended") == "instability"):
         for k in ("phi", "jammed", "loops", "winding", "ab_ratio", "contacts", "steps", "wall_s"):
-            row[k] = res.get(k, "")
+            row[k] = last.get(k, "")
         row["class"] = classify(row)
         # a run the guard stopped is classified from its last good state
-        row["status"] = "ok" if rc == 0 else "unstable"
-        if rc != 0:
-            row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+        row["status"] = "ok" if res.returncode == 0 else "unstable"
+        if res.returncode != 0:
+            row["error"] = error
     else:
         row["status"] = "failed"
-        row["error"] = (err.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+        row["error"] = error
     return row
 
 

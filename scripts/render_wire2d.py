@@ -6,18 +6,15 @@ units (so it looks like a real wire), each segment coloured by the elastic
 bending energy of its two end nodes, inside the cavity circle -- like the
 snapshots of crumpled-wire papers.
 
-Input layout (H5MD, see styles/dump/h5md.cpp):
-    /particles/all/position/{value,step,time}   value: [frames, Nmax, 2]
-    /connectivity/edges/value                   [frames, Emax, 2] int64
-    /particles/all/bend.plastic_curvature/value [frames, Nmax, 1] (optional)
-Arrays are padded with zeros past the valid rows of a frame; an edge row (0, 0)
-is padding.  Only nodes referenced by valid edges are drawn.
+The trajectory is read by slender.io (python/slender) as ordered chains; the
+plastic curvature comes from the dumped field bend.plastic_curvature (optional).
+Only nodes on a chain's edges are drawn.
 
-Bending energy per interior node (chain order a -> m -> b, as bend2d does):
+Bending energy per node (chain order a -> m -> b, as bend2d does):
     zeta = atan2(e0 x e1, e0 . e1),  e0 = x_m - x_a,  e1 = x_b - x_m
     E = 1/2 k2 zeta^2                       (default)
     E = 1/2 k2 (zeta - kappa_pl l0)^2       (--plastic: recoverable energy)
-Chain end nodes have no hinge and get E = 0.
+The end nodes of an open chain have no hinge and get E = 0.
 
 Usage:
     render_wire2d.py classic.h5                       # last frame -> classic_frame<k>.png
@@ -30,91 +27,49 @@ import math
 import os
 import sys
 
-import h5py
 import numpy as np
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from slender import plot  # noqa: E402  (selects the Agg backend)
+from slender.io import Trajectory  # noqa: E402
 
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import LogNorm, Normalize  # noqa: E402
-from matplotlib.patches import Circle  # noqa: E402
 
-POS = "/particles/all/position"
-EDGES = "/connectivity/edges/value"
-PLASTIC = "/particles/all/bend.plastic_curvature/value"
+PLASTIC = "bend.plastic_curvature"
 
 
-def n_frames(f):
-    """Frames present in both the position and the edge series."""
-    return min(f[POS + "/value"].shape[0], f[EDGES].shape[0])
-
-
-def read_frame(f, t, want_plastic):
-    """Return (pos [Nmax,2], edges [E,2] valid only, step, time, kappa_pl or None)."""
-    pos = np.asarray(f[POS + "/value"][t], dtype=float)[:, :2]
-    edges = np.asarray(f[EDGES][t], dtype=np.int64)
-    edges = edges[~((edges[:, 0] == 0) & (edges[:, 1] == 0))]  # drop (0,0) padding
-    step = int(f[POS + "/step"][t])
-    time = float(f[POS + "/time"][t])
-    kpl = None
-    if want_plastic:
-        if PLASTIC in f:
-            kpl = np.asarray(f[PLASTIC][t], dtype=float).reshape(pos.shape[0], -1)[:, 0]
-        else:
-            print("warning: no bend.plastic_curvature in file; using elastic energy 1/2 k2 zeta^2",
-                  file=sys.stderr)
-    return pos, edges, step, time, kpl
-
-
-def polylines(edges):
-    """Split the chain-ordered edge list into node sequences.
-
-    A new polyline starts whenever an edge's first node differs from the
-    previous edge's second node.  A closed chain comes back as a sequence whose
-    first and last nodes coincide.
-    """
-    if len(edges) == 0:
-        return []
-    breaks = np.flatnonzero(edges[1:, 0] != edges[:-1, 1]) + 1
-    lines = []
-    for chunk in np.split(edges, breaks):
-        lines.append(np.concatenate([chunk[:, 0], chunk[-1:, 1]]))
-    return lines
-
-
-def node_energy(pos, lines, k2, kpl=None, l0=1.0):
-    """Bending energy per node (zeros for chain ends and unused nodes)."""
-    energy = np.zeros(pos.shape[0])
-    for nodes in lines:
-        closed = len(nodes) > 3 and nodes[0] == nodes[-1]
-        if closed:  # hinge at the closing node too: wrap a -> m -> b around
-            nodes = np.concatenate([nodes[-2:-1], nodes])
-        if len(nodes) < 3:
-            continue
-        a, m, b = nodes[:-2], nodes[1:-1], nodes[2:]
-        e0 = pos[m] - pos[a]
-        e1 = pos[b] - pos[m]
-        cross = e0[:, 0] * e1[:, 1] - e0[:, 1] * e1[:, 0]
-        dot = np.sum(e0 * e1, axis=1)
-        zeta = np.arctan2(cross, dot)
-        if kpl is not None:
-            zeta = zeta - kpl[m] * l0
-        energy[m] = 0.5 * k2 * zeta**2
+def node_energy(points, closed, k2, kpl=None, l0=1.0):
+    """Bending energy per node of one chain in chain order (zero at an open chain's ends)."""
+    n = len(points)
+    energy = np.zeros(n)
+    idx = np.arange(n)
+    if closed:  # a hinge at every node, wrapping around
+        a, m, b = np.roll(idx, 1), idx, np.roll(idx, -1)
+    elif n >= 3:
+        a, m, b = idx[:-2], idx[1:-1], idx[2:]
+    else:
+        return energy
+    e0 = points[m] - points[a]
+    e1 = points[b] - points[m]
+    cross = e0[:, 0] * e1[:, 1] - e0[:, 1] * e1[:, 0]
+    zeta = np.arctan2(cross, np.sum(e0 * e1, axis=1))
+    if kpl is not None:
+        zeta = zeta - kpl[m] * l0
+    energy[m] = 0.5 * k2 * zeta**2
     return energy
 
 
-def render(pos, edges, energy, step, time, args, out_path):
-    """Draw one frame and save it to out_path."""
-    a, b = edges[:, 0], edges[:, 1]
-    segs = np.stack([pos[a], pos[b]], axis=1)  # [E, 2 (ends), 2 (xy)]
-    seg_e = 0.5 * (energy[a] + energy[b])  # segment colour: mean of its end nodes
-
+def render(chains, closed, energy, step, time, args, out_path):
+    """Draw one frame (ordered chains with per-node energies) and save it to out_path."""
     center = np.asarray(args.center, dtype=float)
-    used = np.unique(edges)
-    rmax = float(np.max(np.linalg.norm(pos[used] - center, axis=1))) if len(used) else 1.0
+    rmax = max(float(np.max(np.linalg.norm(c - center, axis=1))) for c in chains)
     radius = args.radius if args.radius is not None else max(math.ceil(rmax), 1)
+
+    fig, ax = plt.subplots(figsize=(args.size, args.size * 0.85), dpi=args.dpi)
+    lc = plot.wire2d(ax, chains, closed, energy, radius=radius, center=center,
+                     margin=0.5 * args.diameter)
+    seg_e = lc.get_array()  # segment colour: mean of its end nodes
 
     # Colour scale (fixed with --vmin/--vmax, e.g. for a consistent movie).
     vmax = args.vmax if args.vmax is not None else (float(seg_e.max()) if len(seg_e) else 1.0)
@@ -122,37 +77,21 @@ def render(pos, edges, energy, step, time, args, out_path):
     if args.log:
         positive = seg_e[seg_e > 0]
         vmin = args.vmin if args.vmin else (max(positive.min(), vmax * 1e-6) if len(positive) else vmax * 1e-6)
-        norm = LogNorm(vmin=vmin, vmax=vmax, clip=True)
-        seg_e = np.maximum(seg_e, vmin)  # zero-energy ends would be masked on a log scale
+        lc.set_norm(LogNorm(vmin=vmin, vmax=vmax, clip=True))
+        lc.set_array(np.maximum(seg_e, vmin))  # zero-energy ends would be masked on a log scale
     else:
-        norm = Normalize(vmin=args.vmin if args.vmin is not None else 0.0, vmax=vmax)
-
-    fig, ax = plt.subplots(figsize=(args.size, args.size * 0.85), dpi=args.dpi)
-    lc = LineCollection(segs, cmap="viridis", norm=norm, capstyle="round", joinstyle="round")
-    lc.set_array(seg_e)
-    ax.add_collection(lc)
-    ax.add_patch(Circle(center, radius, fill=False, edgecolor="black", linewidth=1.2))
+        lc.set_norm(Normalize(vmin=args.vmin if args.vmin is not None else 0.0, vmax=vmax))
     cb = fig.colorbar(lc, ax=ax, fraction=0.046, pad=0.04)
     cb.set_label("bending energy")
-
-    # Limits: the cavity plus a margin (and the wire, should it stick out).
-    half = max(radius, rmax + 0.5 * args.diameter) * 1.04
-    ax.set_xlim(center[0] - half, center[0] + half)
-    ax.set_ylim(center[1] - half, center[1] + half)
-    ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
-
-    # Line width in points = diameter in data units: measure the final data ->
-    # pixel scale (after the colorbar took its space and the aspect is applied).
-    ax.apply_aspect()
-    px_per_unit = ax.transData.transform((1.0, 0.0))[0] - ax.transData.transform((0.0, 0.0))[0]
-    pt_per_unit = px_per_unit * 72.0 / fig.dpi
-    lc.set_linewidth(args.diameter * pt_per_unit)
+    # the final layout is set (colour bar placed): the wire at its diameter
+    plot.set_width_in_data_units(ax, lc, args.diameter)
 
     title = f"step {step}, t = {time:.6g}"
     if args.radius is not None:
-        mid = 0.5 * (pos[a] + pos[b])
+        segs, _ = plot.segments(chains, closed)
+        mid = segs.mean(axis=1)
         inside = int(np.count_nonzero(np.linalg.norm(mid - center, axis=1) < radius))
         phi = args.diameter * inside * args.l0 / (math.pi * radius**2)
         title += f", $\\phi$ = {phi:.4f}"
@@ -162,15 +101,26 @@ def render(pos, edges, energy, step, time, args, out_path):
     plt.close(fig)
 
 
-def render_index(f, t, args, out_path):
-    pos, edges, step, time, kpl = read_frame(f, t, args.plastic)
-    if len(edges) == 0:
-        print(f"frame {t}: no edges, skipped", file=sys.stderr)
+def render_index(t, i, args, out_path):
+    chains, closed = t.frame(i), t.closed(i)
+    if not chains:
+        print(f"frame {i}: no edges, skipped", file=sys.stderr)
         return
-    energy = node_energy(pos, polylines(edges), args.k2, kpl, args.l0)
-    render(pos, edges, energy, step, time, args, out_path)
-    print(f"frame {t} (step {step}): {len(np.unique(edges))} nodes, {len(edges)} edges, "
-          f"max node energy {energy.max():.4g} -> {out_path}")
+    chains = [c[:, :2] for c in chains]
+    kpl = [None] * len(chains)
+    if args.plastic:
+        if PLASTIC in t.fields:
+            kpl = [k.reshape(len(k), -1)[:, 0] for k in t.frame(i, PLASTIC)]
+        else:
+            print("warning: no bend.plastic_curvature in file; using elastic energy 1/2 k2 zeta^2",
+                  file=sys.stderr)
+    energy = [node_energy(c, ring, args.k2, k, args.l0) for c, ring, k in zip(chains, closed, kpl)]
+    step, time = int(t.steps[i]), float(t.times[i])
+    render(chains, closed, energy, step, time, args, out_path)
+    nodes = sum(len(c) for c in chains)
+    edges = sum(len(c) if ring else len(c) - 1 for c, ring in zip(chains, closed))
+    print(f"frame {i} (step {step}): {nodes} nodes, {edges} edges, "
+          f"max node energy {max(e.max() for e in energy):.4g} -> {out_path}")
 
 
 def main(argv=None):
@@ -197,8 +147,8 @@ def main(argv=None):
     args = p.parse_args(argv)
 
     stem = os.path.splitext(args.file)[0]
-    with h5py.File(args.file, "r") as f:
-        T = n_frames(f)
+    with Trajectory(args.file) as f:
+        T = len(f)
         if T == 0:
             sys.exit(f"{args.file}: no frames")
         if args.all:

@@ -12,32 +12,28 @@ import argparse
 import concurrent.futures as cf
 import csv
 import os
-import subprocess
-import tempfile
+import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from slender.run import run_deck  # noqa: E402
 
 
-def run(slender, examples, deck, f, reading, value, speed_b, seed):
-    args = [slender, "-q", os.path.join(examples, "crumple2d", deck + ".lua"),
-            "-v", f"f={f}", "-v", "output=false", "-v", f"seed={seed}"]
+def run(binary, examples, deck, f, reading, value, speed_b, seed):
+    variables = [f"f={f}", "output=false", f"seed={seed}"]
     if reading == "a":
-        args += ["-v", f"s={value}", "-v", "hardening=0.05"]
+        variables += [f"s={value}", "hardening=0.05"]
     else:
-        args += ["-v", f"s={speed_b}", "-v", f"hardening={value}"]
-    with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
+        variables += [f"s={speed_b}", f"hardening={value}"]
+    res = run_deck(os.path.join(examples, "crumple2d", deck + ".lua"), variables, binary=binary)
     row = {}
-    for line in p.stdout.splitlines():
-        if line.startswith("RESULT"):
-            for kv in line.split()[1:]:
-                k, _, v = kv.partition("=")
-                row[k] = v
+    for rec in res.results_text:  # verbatim, as the deck printed them
+        row.update(rec)
     # the deck reports its feed speed as s; the studied value is s_value
     row.update({"reading": reading, "s_value": value, "seed": seed,
-                "status": "ok" if p.returncode == 0 else "failed"})
-    if p.returncode != 0:
-        row["error"] = (p.stderr.strip().splitlines() or ["?"])[-1][:200]
+                "status": "ok" if res.returncode == 0 else "failed"})
+    if res.returncode != 0:
+        row["error"] = (res.error or "?")[:200]
     return row
 
 

@@ -3,7 +3,8 @@
 # (or with sudo available). Skips apt-get when everything is already there.
 set -euo pipefail
 PKGS=(build-essential cmake pkg-config libeigen3-dev liblua5.4-dev libhdf5-dev libfftw3-dev
-      libgtest-dev python3 python3-numpy python3-matplotlib python3-h5py)
+      libgtest-dev python3 python3-numpy python3-matplotlib python3-h5py python3-pytest
+      snakemake slurm-wlm munge)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -13,12 +13,14 @@ of its peak) is logged next to it.
 import argparse
 import csv
 import os
-import subprocess
+import sys
 import tempfile
 
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from slender.run import run_deck  # noqa: E402
 FIELDS = ["h", "edge", "level", "core_edge", "phi_e", "R_C", "R_C_s", "Eb_hat", "E_s_over_E_b",
           "triangles", "fire_steps", "wall_s", "status", "error"]
 
@@ -26,18 +28,14 @@ FIELDS = ["h", "edge", "level", "core_edge", "phi_e", "R_C", "R_C_s", "Eb_hat", 
 def run_one(a, h, level):
     row = {"h": h, "edge": a.edge, "level": level, "core_edge": a.edge / 2 ** level, "phi_e": a.phi}
     with tempfile.TemporaryDirectory() as tmp:
-        args = [a.slender, "-q", os.path.join(a.examples, "shells", "econe.lua"), "-v", "fast=1",
-                "-v", f"h={h}", "-v", f"phi_max={a.phi}", "-v", "contact=0", "-v", "plots=0",
-                "-v", f"edge={a.edge}", "-v", "refine_center=0.3", "-v", f"refine_levels={level}", "-v", f"out={tmp}/o"]
-        p = subprocess.run(args, cwd=tmp, capture_output=True, text=True)
-        res = {}
-        for line in p.stdout.splitlines():
-            if line.startswith("RESULT"):
-                res = dict(kv.partition("=")[::2] for kv in line.split()[1:])
+        variables = ["fast=1", f"h={h}", f"phi_max={a.phi}", "contact=0", "plots=0", f"edge={a.edge}",
+                     "refine_center=0.3", f"refine_levels={level}", f"out={tmp}/o"]
+        run = run_deck(os.path.join(a.examples, "shells", "econe.lua"), variables, cwd=tmp, binary=a.slender)
+        res = run.results_text[-1] if run.results_text else {}  # verbatim, as the deck printed it
         log = os.path.join(tmp, "o", "econe.csv")
-        if p.returncode != 0 or not res or not os.path.exists(log):
+        if run.returncode != 0 or not res or not os.path.exists(log):
             row["status"] = "failed"
-            row["error"] = (p.stderr.strip().splitlines() or ["?"])[-1][:200].replace(",", ";")
+            row["error"] = (run.error or "?")[:200].replace(",", ";")
             return row
         with open(log) as fh:
             last = list(csv.DictReader(fh))[-1]

@@ -23,12 +23,13 @@
 """
 import argparse
 import csv
-import math
+import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from slender import plot  # noqa: E402  (selects the Agg backend)
+from slender.io import Surface  # noqa: E402
 
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -42,37 +43,7 @@ def read_csv(path):
 
 
 def render(args):
-    import h5py
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
-    with h5py.File(args.surface, "r") as f:
-        tri = f["mesh/triangles"][()].astype(int)
-        pos = f["frames/position/value"][args.frame]
-        name = args.field.replace("/", "|")
-        field = f[f"frames/{name}/value"][args.frame][:, 0] if name in f["frames"] else None
-    fig = plt.figure(figsize=(10, 5))
-    if field is not None:
-        vals = np.log10(np.maximum(field, 1e-12)) if "Ub" in args.field else field
-        norm = plt.Normalize(np.percentile(vals, 2), np.percentile(vals, 98))
-        colours = plt.cm.viridis(norm(vals))
-    else:
-        colours = np.full((len(tri), 4), (0.6, 0.7, 0.9, 1.0))
-    lo, hi = pos.min(axis=0), pos.max(axis=0)
-    c, r = 0.5 * (lo + hi), 0.5 * (hi - lo).max()
-    for k, (elev, azim) in enumerate([(30, -60), (90, -90)]):
-        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        poly = Poly3DCollection(pos[tri], facecolors=colours, edgecolor="k", linewidths=0.05)
-        ax.add_collection3d(poly)
-        for axis, set_lim in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
-            set_lim(c[axis] - r, c[axis] + r)
-        ax.view_init(elev=elev, azim=azim)
-        ax.set_box_aspect((1, 1, 1))
-        ax.set_axis_off()
-    if field is not None:
-        sm = plt.cm.ScalarMappable(norm=norm, cmap="viridis")
-        label = f"log10 {args.field}" if "Ub" in args.field else args.field
-        fig.colorbar(sm, ax=fig.axes, shrink=0.6, label=label)
-    fig.savefig(args.out, dpi=130)
+    plot.render_surface(args.surface, args.out, args.frame, field=args.field)
     print(f"wrote {args.out}")
 
 
@@ -132,12 +103,10 @@ def sphere(args):
 
 
 def read_map(path, frame):
-    import h5py
-    with h5py.File(path, "r") as f:
-        tri = f["mesh/triangles"][()].astype(int)
-        pos = f["frames/position/value"][frame]
-        time = float(f["frames/position/time"][frame])
-        ub = f["frames/koiter.Ub/value"][frame][:, 0]
+    with Surface(path) as s:
+        pos, tri = s.mesh(frame)
+        time = float(s.times[frame])
+        ub = s.face_field("koiter.Ub", frame)
     p = pos[tri]
     area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
     return tri, pos, time, ub, area
@@ -151,8 +120,6 @@ def concentration(ub, area, top=0.1):
 
 
 def sphere_maps(args):
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
     runs = [("shrinking sphere (S-6)", *read_map(args.shrink, args.frame)),
             ("growth in a fixed sphere (S-7)", *read_map(args.grow, args.frame))]
     logs = [np.log10(np.maximum(r[4], 1e-12)) for r in runs]
@@ -160,17 +127,10 @@ def sphere_maps(args):
     norm = plt.Normalize(np.percentile(both, 2), np.percentile(both, 98))
     fig = plt.figure(figsize=(13, 8))
     for k, (label, tri, pos, time, ub, area) in enumerate(runs):
-        lo, hi = pos.min(axis=0), pos.max(axis=0)
-        c, r = 0.5 * (lo + hi), 0.5 * (hi - lo).max()
         for j, (elev, azim) in enumerate([(30, -60), (90, -90)]):
             ax = fig.add_subplot(2, 3, 3 * k + j + 1, projection="3d")
-            ax.add_collection3d(Poly3DCollection(pos[tri], facecolors=plt.cm.viridis(norm(logs[k])),
-                                                 edgecolor="k", linewidths=0.05))
-            for axis, set_lim in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
-                set_lim(c[axis] - r, c[axis] + r)
+            plot.surface(ax, pos, tri, plt.cm.viridis(norm(logs[k])))
             ax.view_init(elev=elev, azim=azim)
-            ax.set_box_aspect((1, 1, 1))
-            ax.set_axis_off()
             if j == 0:
                 ax.set_title(f"{label}, t = {time:.3g}", fontsize=9)
     ax = fig.add_subplot(2, 3, 3)

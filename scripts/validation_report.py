@@ -27,17 +27,16 @@ import argparse
 import csv
 import datetime
 import math
-import os
 import shlex
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO / "python"))
 sys.path.insert(0, str(REPO / "scripts"))
-import work_precision as wp  # noqa: E402  (RESULT parsing, git describe)
+from slender.run import run_deck  # noqa: E402
+import work_precision as wp  # noqa: E402  (number parsing, Markdown escaping, git describe)
 
 EX = REPO / "examples"
 THEORY_KISS = 7.08  # MODELS.md A-1: phi_e^kiss -> 7.08 as h -> 0
@@ -217,23 +216,16 @@ def run_one(slender, case, value, integ, dt, fast, timeout):
         ov["integrator"] = integ
     if dt is not None:
         ov["dt"] = repr(dt)
-    cmd = [str(slender), str(EX / case["deck"]), "-q"]
-    for k, v in ov.items():
-        cmd += ["-v", "%s=%s" % (k, v)]
     row = {"case": case["id"], "resolution": value, "integrator": integ,
-           "dt_mode": "auto" if dt is None else "set", "cmd": " ".join(shlex.quote(c) for c in cmd)}
+           "dt_mode": "auto" if dt is None else "set"}
     with tempfile.TemporaryDirectory(prefix="slender_val_") as tmp:
-        t0 = time.monotonic()
-        try:
-            p = subprocess.run(cmd, cwd=tmp, capture_output=True, text=True, timeout=timeout)
-            rc, text = p.returncode, p.stdout + p.stderr
-        except subprocess.TimeoutExpired:
-            rc, text = -1, "timed out after %g s" % timeout
-        row["run_s"] = time.monotonic() - t0
-        results = wp.parse_result_lines(text)
-        if rc != 0 or not results:
+        res = run_deck(EX / case["deck"], ov, cwd=tmp, timeout=timeout, binary=slender)
+        row["cmd"] = " ".join(shlex.quote(c) for c in res.command)
+        row["run_s"] = res.wall_s
+        results = res.results
+        if res.returncode != 0 or not results:
             row["status"] = "failed"
-            row["error"] = wp.last_line(text)
+            row["error"] = res.error
             return row
         r = results[-1]
         row["status"] = "ok"

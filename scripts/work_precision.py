@@ -36,14 +36,13 @@ import datetime
 import math
 import os
 import shlex
-import signal
 import subprocess
 import sys
-import tempfile
-import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO / "python"))
+import slender.run as slender_run  # noqa: E402
 
 DEFAULT_NODES = [11, 21, 41, 81]
 DEFAULT_INTEGRATORS = ["verlet", "gear5", "gear6", "fire"]
@@ -70,33 +69,6 @@ TAIL_COLUMNS = ["returncode", "run_s", "cmd"]
 # Running and parsing
 # ----------------------------------------------------------------------------
 
-def parse_result_lines(text):
-    """Return a list of dicts, one per `RESULT k=v k=v ...` line in text."""
-    results = []
-    for line in text.splitlines():
-        tokens = line.split()
-        if len(tokens) < 2 or tokens[0] != "RESULT":
-            continue
-        rec = {}
-        for tok in tokens[1:]:
-            key, sep, value = tok.partition("=")
-            if sep and key:
-                rec[key] = value
-            else:   # keep stray tokens visible rather than dropping them
-                rec.setdefault("unparsed", "")
-                rec["unparsed"] = (rec["unparsed"] + " " + tok).strip()
-        results.append(rec)
-    return results
-
-
-def last_line(text):
-    """Last non-empty line of text (stripped), or ''."""
-    for line in reversed(text.splitlines()):
-        if line.strip():
-            return line.strip()
-    return ""
-
-
 def to_float(value):
     """float(value) or None if it is not a number."""
     try:
@@ -106,61 +78,19 @@ def to_float(value):
     return x
 
 
-def run_deck(slender, deck, overrides, timeout, base_row):
+def run_deck(binary, deck, overrides, timeout, base_row):
     """Run one deck with `-v name=value` overrides; return a list of rows.
 
     base_row holds the requested parameters; RESULT keys override them.
     """
-    cmd = [str(slender), str(deck), "-q"]
-    for name, value in overrides:
-        cmd += ["-v", "%s=%s" % (name, value)]
+    res = slender_run.run_deck(deck, overrides, timeout=timeout, binary=binary)
     row0 = dict(base_row)
-    row0["cmd"] = " ".join(shlex.quote(c) for c in cmd)
-
-    t0 = time.perf_counter()
-    with tempfile.TemporaryDirectory(prefix="slender_wp_") as tmp:
-        try:
-            # own session, so a timeout can kill the whole process group
-            proc = subprocess.Popen(cmd, cwd=tmp, stdout=subprocess.PIPE,
-                                    stderr=subprocess.PIPE, text=True,
-                                    errors="replace", start_new_session=True)
-        except OSError as exc:
-            row0.update(status="failed", error="cannot run: %s" % exc, run_s="0")
-            return [row0]
-        try:
-            out, err = proc.communicate(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            try:
-                os.killpg(proc.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-            proc.communicate()
-            row0.update(status="timeout", error="timed out after %g s" % timeout,
-                        run_s="%.3f" % (time.perf_counter() - t0))
-            return [row0]
-        except BaseException:   # Ctrl-C: the child is in its own session, end it too
-            try:
-                os.killpg(proc.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-            raise
-    row0["run_s"] = "%.3f" % (time.perf_counter() - t0)
-    row0["returncode"] = str(proc.returncode)
-
-    # RESULT lines are expected on stdout; fall back to stderr just in case.
-    results = parse_result_lines(out) or parse_result_lines(err)
-    err_text = last_line(err) or last_line(out)
-
-    if proc.returncode != 0:
-        status, error = "failed", err_text or "exit status %d" % proc.returncode
-    elif not results:
-        status, error = "no-result", "no RESULT line in output" + (
-            ": " + err_text if err_text else "")
-    else:
-        status, error = "ok", ""
-
+    row0["cmd"] = " ".join(shlex.quote(c) for c in res.command)
+    row0["run_s"] = "%.3f" % res.wall_s
+    if res.status != "timeout" and res.returncode is not None:
+        row0["returncode"] = str(res.returncode)
     rows = []
-    for rec in results or [{}]:
+    for rec in res.results_text or [{}]:
         row = dict(row0)
         for key, value in rec.items():
             if key in base_row and base_row[key] not in ("", None) \
@@ -168,7 +98,7 @@ def run_deck(slender, deck, overrides, timeout, base_row):
                 print("  warning: RESULT %s=%s differs from requested %s"
                       % (key, value, base_row[key]), file=sys.stderr)
             row[key] = value
-        row["status"], row["error"] = status, error
+        row["status"], row["error"] = res.status, res.error
         rows.append(row)
     return rows
 

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# The study workflows on this machine (workflows/profiles/local: snakemake --cores 2),
+# each with its two-point smoke config, in a temporary folder:
+#  - phase diagram, pack3d phi_max, example suite: per-point JSON records, the tables
+#    (right rows, sane values) and the plots;
+#  - partial rerun: a deleted point is the only deck that runs again (dry run, then run);
+#  - resume: runs cut by a timeout leave their checkpoints, and the next call continues
+#    them to the same result as an uninterrupted run.
+#
+#   tests/workflows/test_local.sh [SLENDER_BINARY]      (default: build/slender)
+set -euo pipefail
+repo="$(cd "$(dirname "$0")/../.." && pwd)"
+bin="$(realpath "${1:-$repo/build/slender}")"
+command -v snakemake > /dev/null || { echo "workflow local: skipped (no snakemake)"; exit 0; }
+[[ -x "$bin" ]] || { echo "workflow local: no slender binary at $bin" >&2; exit 1; }
+export LD_LIBRARY_PATH="$(dirname "$bin")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+tmp="$(mktemp -d /tmp/slender-workflows.XXXXXX)"
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "workflow local: FAILED: $*" >&2; exit 1; }
+
+# study NAME [snakemake args...]: the smoke config of workflows/NAME.smk in $tmp/NAME
+study() {
+  local name="$1"
+  shift
+  snakemake -s "$repo/workflows/$name.smk" --profile "$repo/workflows/profiles/local" \
+    --configfile "$repo/workflows/config/${name}_smoke.yaml" --config slender="$bin" "$@" \
+    --directory "$tmp/$name" > "$tmp/$name.log" 2>&1
+}
+check() {  # check NAME: python assertions on stdin, with results = that study's results folder
+  /usr/bin/python3 - "$tmp/$1/results/$1_smoke" || { tail -n 30 "$tmp/$1.log"; fail "$1 results"; }
+}
+
+t0=$SECONDS
+study phase_diagram || { tail -n 30 "$tmp/phase_diagram.log"; fail "phase_diagram"; }
+check phase_diagram << 'PY'
+import csv, glob, json, os, sys
+results = sys.argv[1]
+points = glob.glob(os.path.join(results, "points", "*.json"))
+assert len(points) == 2, points
+assert all(json.load(open(p))["status"] == "ok" for p in points)
+rows = list(csv.DictReader(open(os.path.join(results, "phase_diagram_f10.csv"))))
+assert len(rows) == 2, rows
+for r in rows:
+    # the smoke runs stop at max_phi = 0.3
+    assert r["status"] == "ok" and 0.29 < float(r["phi"]) < 0.35 and int(r["steps"]) > 1000, r
+    assert r["class"] in ("spiral", "classic", "plastic"), r
+assert sorted(float(r["yield"]) for r in rows) == [0, 0.04], rows
+for png in ("phase_diagram_f10.png", "phase_diagram_f10_phi.png"):
+    assert os.path.getsize(os.path.join(results, png)) > 1000, png
+PY
+echo "phase diagram: 2 points, table and plots ($((SECONDS - t0)) s)"
+
+# partial rerun: only the deleted point's deck runs again, then the table and plots
+t0=$SECONDS
+pd="$tmp/phase_diagram/results/phase_diagram_smoke/points"
+kept="$pd/y0.04_mu0.4_seed1.json"
+stamp="$(stat -c %Y.%y "$kept")"
+rm "$pd/y0_mu0.4_seed1.json"
+study phase_diagram --dry-run --quiet || fail "dry run"
+grep -Eq '^point +1( |$)' "$tmp/phase_diagram.log" || { cat "$tmp/phase_diagram.log"; fail "the dry run does not plan exactly one point"; }
+study phase_diagram || { tail -n 30 "$tmp/phase_diagram.log"; fail "rerun"; }
+ran="$(grep -c '^rule point:' "$tmp/phase_diagram.log" || true)"
+[[ "$ran" -eq 1 ]] || fail "the rerun ran $ran points, expected 1"
+grep -q 'wildcards: y=0, mu=0.4, seed=1' "$tmp/phase_diagram.log" || fail "the rerun ran another point"
+[[ -f "$pd/y0_mu0.4_seed1.json" && "$(stat -c %Y.%y "$kept")" == "$stamp" ]] || fail "the kept point changed"
+echo "phase diagram: a deleted point reran alone ($((SECONDS - t0)) s)"
+
+# resume: a 0.5 s timeout cuts both pack3d runs (about 2 s each); the next call continues them
+t0=$SECONDS
+if study pack3d --config slender="$bin" timeout=0.5; then fail "pack3d finished within its 0.5 s timeout"; fi
+for seed in 1 2; do
+  [[ -f "$tmp/pack3d/results/pack3d_smoke/work/low_torsion_R4_seed$seed/low_torsion_restart.h5" ]] ||
+    { tail -n 30 "$tmp/pack3d.log"; fail "the cut run of seed $seed left no checkpoint"; }
+done
+study pack3d || { tail -n 30 "$tmp/pack3d.log"; fail "pack3d resumed"; }
+PYTHONPATH="$repo/python" SLENDER_BIN="$bin" /usr/bin/python3 -m slender run "$repo/examples/pack3d/low_torsion.lua" \
+  -v R=4 -v seed=1 -v output=false --json "$tmp/reference.json" > /dev/null || fail "the reference run"
+check pack3d << PY
+import csv, json, os, sys
+results = sys.argv[1]
+reference = json.load(open("$tmp/reference.json"))["result"]
+for seed in (1, 2):
+    rec = json.load(open(os.path.join(results, "points", f"low_torsion_R4_seed{seed}.json")))
+    assert rec["status"] == "ok" and rec["resumed_from"] == "low_torsion_restart.h5", rec
+    assert not os.path.exists(os.path.join(results, "work", f"low_torsion_R4_seed{seed}")), "work kept"
+    if seed == 1:  # the engine's restart is bit-identical
+        for key in ("phi", "steps", "contacts", "bend_R_over_YI"):
+            assert rec["result"][key] == reference[key], (key, rec["result"][key], reference[key])
+rows = list(csv.DictReader(open(os.path.join(results, "phi_max.csv"))))
+assert len(rows) == 2 and all(r["setup"] == "low_torsion" and float(r["a_over_R"]) == 0.25
+                              and 0.5 < float(r["phi"]) < 1 and r["stopped"] == "1" for r in rows), rows
+assert os.path.getsize(os.path.join(results, "phi_max.png")) > 1000
+assert os.path.exists(os.path.join(results, "phi_max_fit.csv"))
+PY
+echo "pack3d: 2 runs cut by a timeout, continued from their checkpoints to the uninterrupted result ($((SECONDS - t0)) s)"
+
+t0=$SECONDS
+study examples || { tail -n 30 "$tmp/examples.log"; fail "examples"; }
+check examples << 'PY'
+import csv, os, sys
+results = sys.argv[1]
+rows = {r["deck"]: r for r in csv.DictReader(open(os.path.join(results, "examples.csv")))}
+assert sorted(rows) == ["tutorial/tip_loaded_wire.lua", "validation/cantilever2d.lua"], rows
+assert all(r["status"] == "ok" for r in rows.values()), rows
+assert "rel_error=" in rows["validation/cantilever2d.lua"]["headline"], rows
+# each deck ran in its own folder, where its outputs stay
+assert os.path.exists(os.path.join(results, "decks", "tutorial", "tip_loaded_wire", "thermo.csv"))
+assert "2 decks, 0 failed." in open(os.path.join(results, "summary.md")).read()
+PY
+echo "examples: 2 decks, summary ($((SECONDS - t0)) s)"
+echo "workflow local: ok"

@@ -1,0 +1,102 @@
+"""The studies' tables and plots from their per-point JSON records, drawn and classified
+by the existing scripts (scripts/phase_diagram.py, scripts/pack3d_sweep.py,
+scripts/run-examples), whose functions are imported, not copied."""
+import importlib.machinery
+import importlib.util
+import os
+import sys
+
+from sweep import write_table
+
+SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                       "scripts")
+sys.path.insert(0, SCRIPTS)
+
+import pack3d_sweep  # noqa: E402
+import phase_diagram  # noqa: E402
+
+
+def _import_script(name, path):
+    """A script without the .py suffix, as a module."""
+    loader = importlib.machinery.SourceFileLoader(name, path)
+    module = importlib.util.module_from_spec(importlib.util.spec_from_loader(name, loader))
+    loader.exec_module(module)
+    return module
+
+
+run_examples = _import_script("run_examples", os.path.join(SCRIPTS, "run-examples"))
+
+EXAMPLE_FIELDS = ["deck", "status", "wall_s", "headline"]
+
+
+def diagram_row(record):
+    """A row of scripts/phase_diagram.py's table: a run the guard stopped is classified
+    from its last good state (status unstable)."""
+    var, res = record["variables"], record["result"]
+    row = {k: var[k] for k in ("f", "s", "yield", "mu", "seed")}
+    row["dt"] = var.get("dt", "auto")
+    row.update((k, res[k]) for k in ("phi", "jammed", "loops", "winding", "ab_ratio", "contacts",
+                                     "steps", "wall_s"))
+    row["class"] = phase_diagram.classify(row)
+    row["status"] = "ok" if record["status"] == "ok" else "unstable"
+    row["error"] = record["error"]
+    if "retried_with" in record:  # as the script writes it
+        row["error"] = f"with {record['retried_with']}: {row['error']} | first: {record['first_error']}"[:300]
+    return row
+
+
+def phase_diagram_outputs(records, out, yields, mus, f):
+    """<out>.csv, and the script's <out>.png and <out>_phi.png."""
+    rows = [diagram_row(r) for r in records]
+    write_table(out + ".csv", phase_diagram.FIELDS, rows)
+    phase_diagram.draw(rows, out, yields, mus, f)
+
+
+def packing_row(record):
+    """A row of scripts/pack3d_sweep.py's table."""
+    res = record["result"]
+    row = {k: res[k] for k in pack3d_sweep.FIELDS if k in res}
+    row.update(setup=res["case"].split("/")[-1], a_over_R=1.0 / res["R"], status="ok")
+    return row
+
+
+def phi_max_outputs(records, out):
+    """<out>.csv, the script's <out>.png, and <out>_fit.csv: phi_max = A (a/R)^p per setup
+    with three radii or more."""
+    rows = [packing_row(r) for r in records]
+    write_table(out + ".csv", pack3d_sweep.FIELDS, rows)
+    fits = pack3d_sweep.draw(rows, out)
+    write_table(out + "_fit.csv", ["setup", "A", "p"], [dict(zip(["setup", "A", "p"], f)) for f in fits])
+
+
+def find_decks(examples, patterns):
+    """The example decks (paths below examples/ without .lua) that run-examples would run
+    for any of the patterns (none: all)."""
+    return sorted({d[:-len(".lua")] for pattern in patterns or [""]
+                   for d in run_examples.find_decks(examples, pattern)})
+
+
+def deck_row(deck, record):
+    """A row of run-examples' table: exit status 0 is ok (a deck need not print RESULT)."""
+    rc = record["returncode"]
+    status = "ok" if rc == 0 else ("timeout" if record["status"] == "timeout" else f"failed ({rc})")
+    return {"deck": deck + ".lua", "status": status, "wall_s": f"{record['wall_s']:.1f}",
+            "headline": run_examples.headline(record["result"])}
+
+
+def examples_outputs(decks, records, results, mode):
+    """<results>/examples.csv and <results>/summary.md (run-examples' table, linking the
+    plots each deck made in its folder <results>/decks/<deck>/)."""
+    rows = [deck_row(d, r) for d, r in zip(decks, records)]
+    write_table(os.path.join(results, "examples.csv"), EXAMPLE_FIELDS, rows)
+    failed = sum(r["status"] != "ok" for r in rows)
+    with open(os.path.join(results, "summary.md"), "w") as fh:
+        fh.write(f"# Example decks ({mode} mode)\n\n| deck | status | wall s | headline | plots |\n"
+                 "|---|---|---|---|---|\n")
+        for deck, row in zip(decks, rows):
+            pngs = sorted(os.path.relpath(os.path.join(d, f), results)
+                          for d, _, files in os.walk(os.path.join(results, "decks", deck))
+                          for f in files if f.endswith(".png"))
+            links = " ".join(f"[{os.path.basename(p)}]({p})" for p in pngs)
+            fh.write(f"| `{row['deck']}` | {row['status']} | {row['wall_s']} | {row['headline']} | {links} |\n")
+        fh.write(f"\n{len(rows)} decks, {failed} failed.\n")

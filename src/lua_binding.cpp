@@ -852,6 +852,12 @@ void open_slender(lua_State* L, const DeckOptions& opt) {
   lua_pop(L, 1);
 }
 
+void close_slender(lua_State* L) {
+  DeckContext* ctx = context(L);
+  lua_close(L);  // collects simulations: outputs are flushed and closed
+  delete ctx;
+}
+
 std::vector<std::string> deck_calls() {
   std::vector<std::string> out;
   for (const luaL_Reg* r = kModule; r->name; ++r) out.push_back(std::string("slender.") + r->name);
@@ -904,8 +910,7 @@ int run_deck(const DeckOptions& opt) {
                      "slender: warning: -v %s=%s was never read by the deck (slender.var(\"%s\")); "
                      "the run did not use it\n",
                      name.c_str(), value.c_str(), name.c_str());
-  lua_close(L);  // collects simulations: outputs are flushed and closed
-  delete ctx;
+  close_slender(L);
   if (opt.catch_signals) {
     std::signal(SIGINT, old_int);
     std::signal(SIGTERM, old_term);

@@ -23,6 +23,9 @@ struct DeckOptions {
 
 // Registers the `slender` module (global and for require) in a Lua state.
 void open_slender(lua_State* L, const DeckOptions& opt);
+// Closes a state opened with open_slender (its simulations are collected, their outputs
+// flushed) and frees the module's context.
+void close_slender(lua_State* L);
 
 // Runs a deck; prints one error line on failure. Exit codes: 0 ok, 1 deck or
 // input error, 3 instability, 130 stopped by SIGINT or SIGTERM (state written).

@@ -219,11 +219,41 @@ std::string lower_ext(const std::string& path) {
 TriMesh read_mesh(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot open mesh file '" + path + "'");
-  const std::string ext = lower_ext(path);
+  return parse_mesh(in, lower_ext(path), path);
+}
+
+// Every message names the file and the line: vertex numbers would be ambiguous (OBJ counts
+// from 1, OFF from 0, slender's node numbers from 1).
+TriMesh parse_mesh(std::istream& in, const std::string& format, const std::string& name) {
   TriMesh m;
+  std::vector<int> vertex_line, face_line;
   std::string line;
   int ln = 0;
-  if (ext == "obj") {
+  auto add_vertex = [&](const Vec3& p) {
+    // squared lengths of larger coordinates overflow (areas, normals, distances)
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(p[a]) || std::abs(p[a]) > 1e150)
+        bad(name, ln, "vertex coordinates must be finite and at most 1e150 in magnitude");
+    m.x.push_back(p);
+    vertex_line.push_back(ln);
+  };
+  // `first`: the number of the first vertex in this format (OBJ 1, OFF 0)
+  auto add_face = [&](const std::vector<long>& ids, int first) {
+    Tri t{};
+    for (int k = 0; k < 3; ++k) {
+      if (ids[k] < 0 || ids[k] >= m.n_nodes())
+        bad(name, ln,
+            "face index " + std::to_string(ids[k] + first) + " out of range " +
+                std::to_string(first) + ".." + std::to_string(m.n_nodes() - 1 + first) +
+                " (the vertices defined before this line)");
+      t[k] = static_cast<int>(ids[k]);
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      bad(name, ln, "a triangle names the same vertex twice");
+    m.tri.push_back(t);
+    face_line.push_back(ln);
+  };
+  if (format == "obj") {
     while (std::getline(in, line)) {
       ++ln;
       std::istringstream s(line);
@@ -231,25 +261,29 @@ TriMesh read_mesh(const std::string& path) {
       if (!(s >> tag) || tag[0] == '#') continue;
       if (tag == "v") {
         Vec3 p;
-        if (!(s >> p.x() >> p.y() >> p.z())) bad(path, ln, "a vertex needs x y z");
-        m.x.push_back(p);
+        if (!(s >> p.x() >> p.y() >> p.z())) bad(name, ln, "a vertex needs x y z");
+        add_vertex(p);
       } else if (tag == "f") {
-        std::vector<int> ids;
+        std::vector<long> ids;
         std::string tok;
         while (s >> tok) {
-          int k = 0;
+          long k = 0;
           try {
-            k = std::stoi(tok.substr(0, tok.find('/')));
+            std::size_t used = 0;
+            const std::string num = tok.substr(0, tok.find('/'));
+            k = std::stol(num, &used);
+            if (used != num.size() || k == 0) throw std::invalid_argument(tok);
           } catch (...) {
-            bad(path, ln, "bad face index '" + tok + "'");
+            bad(name, ln, "bad face index '" + tok + "' (OBJ numbers vertices from 1)");
           }
+          // negative indices count back from the last vertex defined so far
           ids.push_back(k < 0 ? m.n_nodes() + k : k - 1);
         }
-        if (ids.size() != 3) bad(path, ln, "only triangles are supported");
-        m.tri.push_back({ids[0], ids[1], ids[2]});
+        if (ids.size() != 3) bad(name, ln, "only triangles are supported");
+        add_face(ids, 1);
       }
     }
-  } else if (ext == "off") {
+  } else if (format == "off") {
     auto next = [&](std::istringstream& s) {
       while (std::getline(in, line)) {
         ++ln;
@@ -262,34 +296,71 @@ TriMesh read_mesh(const std::string& path) {
       return false;
     };
     std::istringstream s;
-    if (!next(s)) bad(path, ln, "empty file");
+    if (!next(s)) bad(name, ln, "empty file");
     std::string tag;
     s >> tag;
-    if (tag != "OFF") bad(path, ln, "expected the OFF header");
-    int nv = 0, nf = 0;
+    if (tag != "OFF") bad(name, ln, "expected the OFF header");
+    long nv = 0, nf = 0;
     if (!(s >> nv >> nf)) {
-      if (!next(s) || !(s >> nv >> nf)) bad(path, ln, "expected the vertex and face counts");
+      if (!next(s) || !(s >> nv >> nf)) bad(name, ln, "expected the vertex and face counts");
     }
-    for (int i = 0; i < nv; ++i) {
+    if (nv < 0 || nf < 0) bad(name, ln, "negative vertex or face count");
+    for (long i = 0; i < nv; ++i) {
       Vec3 p;
-      if (!next(s) || !(s >> p.x() >> p.y() >> p.z())) bad(path, ln, "a vertex needs x y z");
-      m.x.push_back(p);
+      if (!next(s) || !(s >> p.x() >> p.y() >> p.z()))
+        bad(name, ln,
+            "a vertex needs x y z (the header announces " + std::to_string(nv) + " vertices)");
+      add_vertex(p);
     }
-    for (int i = 0; i < nf; ++i) {
-      int k = 0;
-      Tri t{};
-      if (!next(s) || !(s >> k) || k != 3 || !(s >> t[0] >> t[1] >> t[2]))
-        bad(path, ln, "only triangles ('3 a b c') are supported");
-      m.tri.push_back(t);
+    for (long i = 0; i < nf; ++i) {
+      long k = 0;
+      std::vector<long> ids(3);
+      if (!next(s) || !(s >> k) || k != 3 || !(s >> ids[0] >> ids[1] >> ids[2]))
+        bad(name, ln,
+            "only triangles ('3 a b c') are supported (the header announces " +
+                std::to_string(nf) + " faces)");
+      add_face(ids, 0);
     }
+    if (next(s))
+      bad(name, ln,
+          "more lines than the " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+              " faces the header announces");
   } else {
-    throw InputError("mesh file '" + path + "': unknown extension (use .obj or .off)");
+    throw InputError("mesh file '" + name + "': unknown extension (use .obj or .off)");
   }
+  if (m.tri.empty()) throw InputError("mesh file '" + name + "' has no triangles");
+  // a vertex no triangle uses has no stiffness: the first step would send it anywhere
+  std::vector<char> used(m.x.size(), 0);
   for (const Tri& t : m.tri)
-    for (int k : t)
-      if (k < 0 || k >= m.n_nodes())
-        throw InputError("mesh file '" + path + "': face index out of range");
-  if (m.tri.empty()) throw InputError("mesh file '" + path + "' has no triangles");
+    for (int k : t) used[static_cast<std::size_t>(k)] = 1;
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (!used[i])
+      bad(name, vertex_line[i], "this vertex belongs to no triangle: remove it");
+  // two vertices at one position leave a slit between the triangles on either side
+  std::vector<int> order(m.x.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  auto less = [&](int a, int b) {
+    return std::lexicographical_compare(m.x[a].data(), m.x[a].data() + 3, m.x[b].data(),
+                                        m.x[b].data() + 3);
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (m.x[order[k - 1]] == m.x[order[k]]) {
+      const int a = std::min(order[k - 1], order[k]), b = std::max(order[k - 1], order[k]);
+      bad(name, vertex_line[b],
+          "this vertex sits where the vertex of line " + std::to_string(vertex_line[a]) +
+              " does: merge them (two vertices at one place leave a slit in the surface)");
+    }
+  // the same triangle twice (in either orientation) is not a surface
+  std::map<Tri, int> seen;
+  for (std::size_t t = 0; t < m.tri.size(); ++t) {
+    Tri key = m.tri[t];
+    std::sort(key.begin(), key.end());
+    auto [it, fresh] = seen.emplace(key, face_line[t]);
+    if (!fresh)
+      bad(name, face_line[t],
+          "this triangle repeats the one of line " + std::to_string(it->second));
+  }
   return m;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <istream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -48,6 +49,11 @@ void refine_where(TriMesh& m, const std::function<bool(const Vec3&)>& inside);
 // Reads a Wavefront OBJ ("v" and "f" lines; polygons must be triangles) or an OFF
 // file, chosen by extension; throws with the file and line on bad input.
 TriMesh read_mesh(const std::string& path);
+// The same from a stream in `format` ("obj" or "off"); `name` names it in messages.
+// Refuses what would fail later or silently: indices out of range, non-finite or huge
+// coordinates, vertices no triangle uses, two vertices at one position, repeated triangles,
+// OFF files longer than their header says.
+TriMesh parse_mesh(std::istream& in, const std::string& format, const std::string& name);
 void write_mesh(const std::string& path, const TriMesh& m);
 
 // Counter-clockwise 1-rings. For node v, next[v] maps a neighbour a to b for every

@@ -1,31 +1,42 @@
 #!/usr/bin/env bash
 # Runs that take longer than one sitting (the R = 20 packings, the f = 100 crumpling
-# deck) continue across sittings: runs/<name>/run.conf says which deck with which
-# variables, and runs/<name>/ keeps the last checkpoint, the thermo CSV and the
-# trajectory segments. Only the configuration, CSV and JSON results are tracked by git:
-# checkpoints and trajectories (HDF5) are run data and stay on the machine.
+# deck) continue across sittings and machines. Each run is a folder outside the
+# repository (run data does not go into git):
 #
-#   scripts/long_run.sh start <name>   run (or continue) it in $SLENDER_RUNS/<name>
-#                                      (default /tmp/slender-runs); foreground, so
-#                                      start it with nohup/setsid for a long run
-#   scripts/long_run.sh save <name>    copy the newest checkpoint, thermo CSV and
-#                                      trajectory segments back into runs/<name>/
-#   scripts/long_run.sh status [name]  steps and the last thermo row of each run
+#   $SLENDER_RUNS/<name>/   (or --dir DIR; default ../slender-runs next to the repository)
+#     run.conf              the deck and its -v variables (written by `init`)
+#     restart.h5, traj/     the newest checkpoint and the trajectory segments (HDF5)
+#     thermo.csv, log/      thermo rows from step 0, each segment's console (head and tail)
+#     segments.csv          steps, wall time and node-steps of each segment
+#     result.json, finished the deck's RESULT line, once it ended by itself
+#
+#   scripts/long_run.sh [--dir DIR] init <name> DECK [-v k=v ...]   create a run of a
+#                              deck under examples/ (e.g. examples/pack3d/low_torsion.lua)
+#   scripts/long_run.sh [--dir DIR] start <name>   run (or continue) it in the work folder
+#                              $SLENDER_WORK/<name> (default /tmp/slender-work), in the
+#                              foreground: start it with nohup/setsid for a long run
+#   scripts/long_run.sh [--dir DIR] save <name>    copy the newest checkpoint, thermo CSV,
+#                              trajectory segments and logs back into the run's folder
+#   scripts/long_run.sh [--dir DIR] status [name]  steps and the last thermo row of each run
 #
 # The binary and the decks are copied into the work folder when a run starts, so a
-# rebuild or an edited deck does not change a run that is going on.
+# rebuild or an edited deck does not change a run that is going on. The finished runs of
+# the thesis studies are recorded in docs/results/long_runs/ (configuration, results,
+# segment timings); `init <name>` with no DECK takes a recorded run's run.conf from there.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-runs_root="${SLENDER_RUNS:-/tmp/slender-runs}"
+runs_dir="${SLENDER_RUNS:-$(dirname "$root")/slender-runs}"
+work_root="${SLENDER_WORK:-/tmp/slender-work}"
+records="$root/docs/results/long_runs"
 
 usage() {
-  sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 }
 
 conf_of() {
-  local conf="$root/runs/$1/run.conf"
-  [[ -f "$conf" ]] || { echo "long_run: no $conf (known runs: $(ls "$root/runs" | grep -v README | tr '\n' ' '))" >&2; exit 2; }
+  local conf="$runs_dir/$1/run.conf"
+  [[ -f "$conf" ]] || { echo "long_run: no $conf (runs in $runs_dir: $(ls "$runs_dir" 2>/dev/null | tr '\n' ' '); 'init $1 DECK' creates it)" >&2; exit 2; }
   # run.conf sets DECK (path from the repository root), OUT (the deck's output name)
   # and ARGS (the -v variables, the same for every segment of the run)
   DECK="" OUT="" ARGS=""
@@ -34,11 +45,36 @@ conf_of() {
   [[ -n "$DECK" && -n "$OUT" ]] || { echo "long_run: $conf must set DECK and OUT" >&2; exit 2; }
 }
 
+# init <name> DECK [-v k=v ...]: a new run; without DECK, a run recorded in
+# docs/results/long_runs/<name>/run.conf (to run it again from step 0)
+init() {
+  local name="$1" store="$runs_dir/$1"
+  shift
+  [[ -f "$store/run.conf" ]] && { echo "long_run: $store/run.conf exists" >&2; exit 1; }
+  mkdir -p "$store"
+  if [[ $# -eq 0 ]]; then
+    [[ -f "$records/$name/run.conf" ]] || { echo "long_run: give a DECK (no recorded run $records/$name)" >&2; exit 2; }
+    cp "$records/$name/run.conf" "$store/run.conf"
+  else
+    local deck="$1" out
+    shift
+    deck="examples/${deck#examples/}"
+    [[ -f "$root/$deck" ]] || { echo "long_run: no deck $root/$deck" >&2; rmdir "$store" 2>/dev/null; exit 2; }
+    out="$(basename "$deck" .lua)"
+    { echo "# $name: created $(date -u +%F)"
+      echo "DECK=$deck"
+      echo "OUT=$out"
+      echo "ARGS=\"$*\""; } > "$store/run.conf"
+  fi
+  echo "long_run: $store/run.conf:"
+  cat "$store/run.conf"
+}
+
 start() {
-  local name="$1" store="$root/runs/$1" work="$runs_root/$1"
+  local name="$1" store="$runs_dir/$1" work="$work_root/$1"
   conf_of "$name"
   if [[ -f "$store/finished" ]]; then
-    echo "long_run: $name has finished ($(cat "$store/finished")); remove runs/$name/finished to run it again" >&2
+    echo "long_run: $name has finished ($(cat "$store/finished")); remove $store/finished to run it again" >&2
     exit 1
   fi
   mkdir -p "$work/bin" "$work/log"
@@ -80,7 +116,7 @@ start() {
 }
 
 save() {
-  local name="$1" store="$root/runs/$1" work="$runs_root/$1"
+  local name="$1" store="$runs_dir/$1" work="$work_root/$1"
   conf_of "$name"
   [[ -d "$work" ]] || { echo "long_run: nothing to save, no $work" >&2; exit 1; }
   mkdir -p "$store/traj"
@@ -140,12 +176,13 @@ segments() {
 
 status() {
   local d name
-  for d in "$root"/runs/*/; do
+  [[ -d "$runs_dir" ]] || { echo "long_run: no runs in $runs_dir"; return 0; }
+  for d in "$runs_dir"/*/; do
     name="$(basename "$d")"
     [[ $# -gt 0 && "$1" != "$name" ]] && continue
-    [[ -f "$d/run.conf" ]] || continue  # a sweep's folder (runs/pd50), not a deck run
+    [[ -f "$d/run.conf" ]] || continue  # not a deck run (a sweep's folder, say)
     conf_of "$name"
-    local csv="$runs_root/$name/${OUT}_thermo.csv"
+    local csv="$work_root/$name/${OUT}_thermo.csv"
     [[ -f "$csv" ]] || csv="$d/thermo.csv"
     if [[ -f "$d/finished" ]]; then
       echo "$name: finished $(cat "$d/finished")"
@@ -160,8 +197,17 @@ status() {
   done
 }
 
+if [[ "${1:-}" == --dir || "${1:-}" == -d ]]; then
+  [[ $# -ge 2 ]] || usage
+  runs_dir="$2"
+  shift 2
+fi
+[[ "${1:-}" == -h || "${1:-}" == --help ]] && { sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0; }
 [[ $# -ge 1 ]] || usage
+# a relative --dir or $SLENDER_RUNS is taken from where the script was called
+[[ "$runs_dir" = /* ]] || runs_dir="$PWD/$runs_dir"
 case "$1" in
+  init) [[ $# -ge 2 ]] || usage; shift; init "$@" ;;
   start) [[ $# -eq 2 ]] || usage; start "$2" ;;
   save) [[ $# -eq 2 ]] || usage; save "$2" ;;
   status) shift; status "$@" ;;

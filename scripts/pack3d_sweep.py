@@ -7,9 +7,11 @@ fit phi_max = A (a/R)^p per setup, fitted on the seed means).
 
   /usr/bin/python3 scripts/pack3d_sweep.py --setups low_torsion --R 4 5 10 13 20 --seeds 1 2 3
 
-A run too long for one sitting (scripts/long_run.sh, runs/<name>/) joins the table once it
-has finished: --add-long-run runs/lt20 takes its result.json and, for the cost, the wall
-time and node-steps summed over all its segments (runs/<name>/segments.csv).
+A run too long for one sitting (scripts/long_run.sh, $SLENDER_RUNS/<name>/) joins the
+table once it has finished: --add-long-run ../slender-runs/lt20 takes its result.json and,
+for the cost, the wall time and node-steps summed over all its segments (segments.csv).
+The R = 20 runs recorded in docs/results/long_runs/ are added the same way:
+--add-long-run docs/results/long_runs/lt20 docs/results/long_runs/ht20.
 """
 import argparse
 import concurrent.futures as cf
@@ -49,8 +51,9 @@ def long_run_row(store):
     instead of those of its last sitting."""
     import json
     path = os.path.join(store, "result.json")
-    if not os.path.exists(os.path.join(store, "finished")) or not os.path.exists(path):
-        raise SystemExit(f"pack3d_sweep: {store} has not finished (no finished/result.json)")
+    # long_run.sh writes result.json (with `finished`) only when the deck ended by itself
+    if not os.path.exists(path):
+        raise SystemExit(f"pack3d_sweep: {store} has not finished (no result.json)")
     with open(path) as fh:
         res = json.load(fh)
     with open(os.path.join(store, "segments.csv")) as fh:
@@ -129,7 +132,7 @@ def main():
     ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                     help="extra -v override for every run (repeatable)")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "pack3d", "phi_max"))
-    ap.add_argument("--add-long-run", nargs="+", default=[], metavar="runs/NAME",
+    ap.add_argument("--add-long-run", nargs="+", default=[], metavar="RUNS/NAME",
                     help="add finished long runs (scripts/long_run.sh) to the table and redraw")
     a = ap.parse_args()
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)

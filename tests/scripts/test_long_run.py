@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""scripts/long_run.sh carries a run across machines: a segment cut off (here: a
-stand-in binary that writes a checkpoint and fails) is saved into runs/<name>/, a
-fresh work folder (another machine) continues from the stored checkpoint and thermo
-rows, each segment's steps and node-steps add up in segments.csv, and a run that
-ended by itself is marked finished and not started again."""
+"""scripts/long_run.sh carries a run across machines: `init` writes the run's
+run.conf in the runs folder outside the repository ($SLENDER_RUNS or --dir), a segment
+cut off (here: a stand-in binary that writes a checkpoint and fails) is saved into
+<runs>/<name>/, a fresh work folder (another machine, $SLENDER_WORK) continues from the
+stored checkpoint and thermo rows, each segment's steps and node-steps add up in
+segments.csv, and a run that ended by itself is marked finished and not started again;
+nothing is written into the repository."""
 import csv
 import json
 import os
@@ -55,29 +57,32 @@ def main():
         repo = os.path.join(tmp, "repo")
         os.makedirs(os.path.join(repo, "scripts"))
         os.makedirs(os.path.join(repo, "examples"))
-        os.makedirs(os.path.join(repo, "runs", "demo"))
         shutil.copy(os.path.join(ROOT, "scripts", "long_run.sh"), os.path.join(repo, "scripts"))
         open(os.path.join(repo, "examples", "demo.lua"), "w").write("-- stand-in\n")
-        with open(os.path.join(repo, "runs", "demo", "run.conf"), "w") as fh:
-            fh.write('DECK=examples/demo.lua\nOUT=demo\nARGS="-v checkpoint_every=6000000"\n')
         fake = os.path.join(tmp, "fake_slender")
         with open(fake, "w") as fh:
             fh.write(FAKE.format(python=sys.executable))
         os.chmod(fake, 0o755)
         script = [os.path.join(repo, "scripts", "long_run.sh")]
-        env = dict(os.environ, SLENDER_BIN=fake, SLENDER_RUNS=os.path.join(tmp, "machine1"))
+        runs = os.path.join(tmp, "runs")
+        env = dict(os.environ, SLENDER_BIN=fake, SLENDER_RUNS=runs,
+                   SLENDER_WORK=os.path.join(tmp, "machine1"))
 
         def run(*args, env=env):
             return subprocess.run(["bash", *script, *args], capture_output=True, text=True, env=env)
 
+        out = run("init", "demo", "examples/demo.lua", "-v", "checkpoint_every=6000000")
+        assert out.returncode == 0, (out.stdout, out.stderr)
+        store = os.path.join(runs, "demo")
+        conf = open(os.path.join(store, "run.conf")).read()
+        assert "DECK=examples/demo.lua\nOUT=demo\nARGS=\"-v checkpoint_every=6000000\"" in conf, conf
         out = run("start", "demo")
         assert out.returncode == 3, (out.stdout, out.stderr)  # the cut-off segment
         assert run("save", "demo").returncode == 0
-        store = os.path.join(repo, "runs", "demo")
         assert open(os.path.join(store, "restart.h5")).read() == "6000000"
         assert not os.path.exists(os.path.join(store, "finished"))
         # another machine: nothing in its work folder but what the repository holds
-        env2 = dict(env, SLENDER_RUNS=os.path.join(tmp, "machine2"))
+        env2 = dict(env, SLENDER_WORK=os.path.join(tmp, "machine2"))
         out = run("start", "demo", env=env2)
         assert out.returncode == 0, (out.stdout, out.stderr)
         assert "restart=demo_restart.h5" in out.stdout, out.stdout
@@ -97,8 +102,14 @@ def main():
         with open(os.path.join(store, "result.json")) as fh:
             assert json.load(fh) == {"case": "demo/x", "phi": 0.25, "steps": 16000000}
         # a finished run is not started again
-        out = run("start", "demo", env=dict(env, SLENDER_RUNS=os.path.join(tmp, "machine3")))
+        out = run("start", "demo", env=dict(env, SLENDER_WORK=os.path.join(tmp, "machine3")))
         assert out.returncode == 1 and "has finished" in out.stderr, (out.stdout, out.stderr)
+        # --dir names the runs folder instead of $SLENDER_RUNS
+        env_nodir = {k: v for k, v in env.items() if k != "SLENDER_RUNS"}
+        out = run("--dir", runs, "status", env=env_nodir)
+        assert out.returncode == 0 and out.stdout.startswith("demo: finished"), (out.stdout, out.stderr)
+        # the repository holds only what was copied into it
+        assert sorted(os.listdir(repo)) == ["examples", "scripts"], os.listdir(repo)
     print("long_run: ok")
 
 

@@ -53,7 +53,7 @@ const char* const kTemplates[] = {
     "local sim = S.simulation{dimension=2, quiet=true} sim:wire{name='wire', nodes=17,"
     " spacing=1, start={-8, 0}} sim:bond('spring', {k=100}) sim:fix('feed', 'inject/wire', T)"
     " sim:integrator('verlet', {dt=0.01}) sim:run(3)",
-    // groups, integrators, the run and the guard
+    // groups, integrators, the run and the guard (at most 3 steps: the harness times inputs)
     "local sim = S.simulation{dimension=2, quiet=true} sim:wire{name='w', nodes=6, spacing=1}"
     " sim:group('g', T) sim:integrator('verlet', {dt=0.01}) sim:run(1)",
     "local sim = S.simulation{dimension=2, quiet=true} sim:wire{name='w', nodes=6, spacing=1}"
@@ -62,7 +62,8 @@ const char* const kTemplates[] = {
     " sim:bond('spring', {k=100}) sim:integrator('verlet', {dt=0.01}) sim:guard(T) sim:run(3)",
     "local sim = S.simulation{dimension=2, quiet=true} sim:wire{name='w', nodes=6, spacing=1}"
     " sim:bond('spring', {k=100}) sim:integrator('verlet', {dt=0.01})"
-    " if type(T) == 'table' then T.steps = 3 end sim:run(T)",
+    " if type(T) == 'table' then T.steps = 3 elseif type(T) == 'number' then T = math.min(T, 3)"
+    " end sim:run(T)",
     // shells
     "local sim = S.simulation{dimension=3, quiet=true} sim:mesh(T)",
     "local sim = S.simulation{dimension=3, quiet=true} sim:mesh{name='s', shape='disc',"

@@ -1,4 +1,4 @@
-// Node-edge contact of 2D wires (MODELS.md §2.3). Broad phase: linked cells over
+// Node-edge contact of 2D wires (docs/models.md §2.3). Broad phase: linked cells over
 // the nodes, a pair list of (node, edge) closer than d + skin, rebuilt when some
 // node moved more than skin/2 since the last build (or every N steps if asked).
 // Dense phase: closest point p = (1-t) x_j + t x_{j+1}, overlap d - |x_i - p|,
@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 
 #include "cell_grid.hpp"
 #include "chain_select.hpp"
@@ -18,12 +20,20 @@
 
 namespace slender {
 
+namespace {
+std::string format_count(double n) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f", n);
+  return buf;
+}
+}  // namespace
+
 class NodeEdgeContactPair : public PairStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("pair", name,
                 "2D node-edge contact: quadratic repulsion, dashpot, stick-slip Coulomb friction "
-                "(MODELS.md §2.3)");
+                "(docs/models.md §2.3)");
     s.real("diameter", "wire diameter d: contact when a node is closer than d to an edge")
         .def(1.0)
         .positive();
@@ -62,7 +72,8 @@ class NodeEdgeContactPair : public PairStyle {
                        std::to_string(lmin) +
                        "): the wire touches itself at rest; raise exclude "
                        "to at least " +
-                       std::to_string(static_cast<int>(d_ / lmin)) + " or space the nodes closer");
+                       // a double: d / l of an absurd diameter overflows an int (found by fuzzing)
+                       format_count(std::floor(d_ / lmin)) + " or space the nodes closer");
     edges_.clear();
     const size_t n = sim.nodes().size();
     chain_of_.assign(n, -1);
@@ -405,7 +416,7 @@ class NodeEdgeContactPair : public PairStyle {
 
   // A new contact whose node was touching the neighbouring edge of the same chain
   // at the last evaluation (kPrev, set for every entry by pass 1) takes over that
-  // contact's stick state (MODELS.md §2.3): the state as it is when entry k is reached,
+  // contact's stick state (docs/models.md §2.3): the state as it is when entry k is reached,
   // i.e. already updated by this evaluation for the entries before k.
   // Entry k's friction state is in `st` (not yet written back).
   void hand_over(size_t k, FrictionState& st) const {

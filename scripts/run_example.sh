@@ -75,6 +75,6 @@ Open the trajectory in ParaView (press Play to watch the wire fold):
 
   paraview out/classic.h5.xdmf
 
-(if ParaView asks for a reader, choose "Xdmf3 Reader S"). Next: a bigger cavity with
+(when ParaView asks for a reader, choose "XDMF Reader": it draws each wire as one polyline). Next: a bigger cavity with
 'bash scripts/run_example.sh -v f=50' (about a minute), the other scenes in examples/README.md.
 EOF

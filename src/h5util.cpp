@@ -115,6 +115,28 @@ void write_doubles(hid_t parent, const std::string& name, const std::vector<doub
           "write " + name);
 }
 
+void write_ints(hid_t parent, const std::string& name, const std::vector<int>& data,
+                std::vector<hsize_t> dims) {
+  Handle space = checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                         H5Sclose, "dataspace");
+  Handle ds = checked(H5Dcreate2(parent, name.c_str(), H5T_NATIVE_INT, space, H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT),
+                      H5Dclose, "cannot create dataset " + name);
+  if (!data.empty())
+    check(H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+          "write " + name);
+}
+
+std::vector<double> xdmf_times(const std::vector<double>& times) {
+  for (std::size_t k = 1; k < times.size(); ++k)
+    if (!(times[k] > times[k - 1])) {
+      std::vector<double> index(times.size());
+      for (std::size_t j = 0; j < index.size(); ++j) index[j] = static_cast<double>(j);
+      return index;
+    }
+  return times;
+}
+
 std::vector<double> read_doubles(hid_t parent, const std::string& name,
                                  std::vector<hsize_t>* dims_out) {
   Handle ds =

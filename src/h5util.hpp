@@ -50,6 +50,13 @@ void write_doubles(hid_t parent, const std::string& name, const std::vector<doub
                    std::vector<hsize_t> dims);
 std::vector<double> read_doubles(hid_t parent, const std::string& name,
                                  std::vector<hsize_t>* dims = nullptr);
+void write_ints(hid_t parent, const std::string& name, const std::vector<int>& data,
+                std::vector<hsize_t> dims);
+// The times an XDMF temporal collection shows for frames written at `times`: the times
+// themselves while they increase, else the frame numbers 0, 1, 2, ... (frames written by a
+// minimisation or at one clock reading would all sit at one time, and ParaView would show
+// only one of them)
+std::vector<double> xdmf_times(const std::vector<double>& times);
 void write_string(hid_t parent, const std::string& name, const std::string& s);
 std::string read_string(hid_t parent, const std::string& name);
 

@@ -56,6 +56,9 @@ class H5mdDump : public DumpStyle {
     }
     auto conn = h5::create_group(file_h_, "connectivity");
     edges_ = std::make_unique<h5::TimeSeries>(conn, "edges", 2, true);
+    // the same chains as XDMF mixed-topology polylines, one per chain in chain order (closed
+    // chains end on their first node): ParaView's Tube filter draws each wire as one tube
+    polylines_ = std::make_unique<h5::TimeSeries>(conn, "polylines", 1, true);
     h5::attr_string(conn, "particles_group", "/particles/all");
   }
 
@@ -71,7 +74,17 @@ class H5mdDump : public DumpStyle {
       for (int j = 0; j < c.n_edges(); ++j)
         e.insert(e.end(), {double(c.edge_tail(j)), double(c.edge_head(j))});
     edges_->append(sim.step, sim.time, e.data(), e.size() / 2);
-    frames_.push_back({sim.time, N, e.size() / 2});
+    std::vector<double> pl;
+    std::size_t lines = 0;
+    for (auto& c : sim.topology().chains) {
+      if (c.n_nodes() < 2) continue;
+      pl.insert(pl.end(), {kXdmfPolyline, double(c.n_nodes() + (c.closed ? 1 : 0))});
+      for (int i : c.nodes) pl.push_back(double(i));
+      if (c.closed) pl.push_back(double(c.nodes.front()));
+      ++lines;
+    }
+    polylines_->append(sim.step, sim.time, pl.data(), pl.size());
+    frames_.push_back({sim.time, N, e.size() / 2, lines, pl.size()});
     H5Fflush(file_h_, H5F_SCOPE_GLOBAL);
     if (xdmf_) write_xdmf(sim);
   }
@@ -82,8 +95,9 @@ class H5mdDump : public DumpStyle {
  private:
   struct Frame {
     double time;
-    size_t nodes, edges;
+    size_t nodes, edges, lines, line_values;
   };
+  static constexpr double kXdmfPolyline = 2;  // the polyline's cell type in XDMF's mixed topology
   int ncomp(Simulation& sim, const std::string& f) const {
     if (f == "position" || f == "velocity" || f == "force") return dim_;
     if (f == "mass") return 1;
@@ -127,13 +141,16 @@ class H5mdDump : public DumpStyle {
     out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
         << "<Grid Name=\"trajectory\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     const long T = static_cast<long>(frames_.size());
+    std::vector<double> times;
+    for (auto& fr : frames_) times.push_back(fr.time);
+    const std::vector<double> shown = h5::xdmf_times(times);
     for (long t = 0; t < T; ++t) {
       auto& fr = frames_[static_cast<size_t>(t)];
-      out << "<Grid Name=\"frame" << t << "\" GridType=\"Uniform\">\n<Time Value=\"" << fr.time
-          << "\"/>\n";
-      out << "<Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\""
-          << fr.edges << "\">\n"
-          << slab("/connectivity/edges/value", t, fr.edges, 2, edges_->capacity(), T, "Int")
+      out << "<Grid Name=\"frame" << t << "\" GridType=\"Uniform\">\n<Time Value=\""
+          << shown[static_cast<size_t>(t)] << "\"/>\n";
+      out << "<Topology TopologyType=\"Mixed\" NumberOfElements=\"" << fr.lines << "\">\n"
+          << slab("/connectivity/polylines/value", t, fr.line_values, 1, polylines_->capacity(), T,
+                  "Int")
           << "</Topology>\n";
       out << "<Geometry GeometryType=\"" << (dim_ == 2 ? "XY" : "XYZ") << "\">\n"
           << slab("/particles/all/position/value", t, fr.nodes, dim_, series_[0]->capacity(), T,
@@ -160,7 +177,7 @@ class H5mdDump : public DumpStyle {
   int dim_;
   h5::Handle file_h_, all_;
   std::vector<std::unique_ptr<h5::TimeSeries>> series_;
-  std::unique_ptr<h5::TimeSeries> edges_;
+  std::unique_ptr<h5::TimeSeries> edges_, polylines_;
   std::vector<Frame> frames_;
   std::vector<int> ncomps_;
 };

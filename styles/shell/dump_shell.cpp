@@ -1,5 +1,5 @@
 // Shell surfaces in HDF5 with an XDMF side file: the limit positions of the real
-// control nodes (Loop's limit mask, MODELS.md §6.6) on the control triangles, plus
+// control nodes (Loop's limit mask, docs/models.md §6.6) on the control triangles, plus
 // per-face fields offered by shell and pair styles (U_b, U_s of the Koiter style,
 // contact flags of contact/shell), so ParaView shows the limit surface coloured by
 // U_b. Layout: /mesh/triangles, /frames/{position,<field>}/{step,time,value}.
@@ -44,10 +44,10 @@ class ShellDump : public DumpStyle {
     for (int i = 0; i < mesh_->n_real_nodes; ++i) masks_.push_back(shell::limit_mask(*mesh_, i));
     file_h_ = h5::create_file(file_);
     auto m = h5::create_group(file_h_, "mesh");
-    std::vector<double> tri;
+    std::vector<int> tri;
     for (int t = 0; t < mesh_->n_real_tris; ++t)
       for (int k : mesh_->mesh.tri[t]) tri.push_back(k);
-    h5::write_doubles(m, "triangles", tri, {static_cast<std::size_t>(mesh_->n_real_tris), 3});
+    h5::write_ints(m, "triangles", tri, {static_cast<std::size_t>(mesh_->n_real_tris), 3});
     frames_g_ = h5::create_group(file_h_, "frames");
     pos_ = std::make_unique<h5::TimeSeries>(frames_g_, "position", 3, false);
     for (auto& f : faces_) {
@@ -96,13 +96,14 @@ class ShellDump : public DumpStyle {
     std::ofstream out(tmp);
     const long T = static_cast<long>(times_.size());
     const std::size_t nn = masks_.size(), nt = static_cast<std::size_t>(mesh_->n_real_tris);
+    const std::vector<double> shown = h5::xdmf_times(times_);
     out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
         << "<Grid Name=\"shell\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (long t = 0; t < T; ++t) {
       out << "<Grid Name=\"frame" << t << "\" GridType=\"Uniform\">\n<Time Value=\""
-          << times_[static_cast<std::size_t>(t)] << "\"/>\n"
+          << shown[static_cast<std::size_t>(t)] << "\"/>\n"
           << "<Topology TopologyType=\"Triangle\" NumberOfElements=\"" << nt << "\">\n"
-          << "<DataItem Dimensions=\"" << nt << " 3\" NumberType=\"Float\" Precision=\"8\" "
+          << "<DataItem Dimensions=\"" << nt << " 3\" NumberType=\"Int\" Precision=\"4\" "
           << "Format=\"HDF\">" << base_name() << ":/mesh/triangles</DataItem>\n</Topology>\n"
           << "<Geometry GeometryType=\"XYZ\">\n"
           << slab("/frames/position/value", t, nn, 3, T) << "</Geometry>\n";

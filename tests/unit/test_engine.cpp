@@ -391,10 +391,18 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   std::vector<hsize_t> edims;
   h5::read_doubles(f, "connectivity/edges/value", &edims);
   EXPECT_EQ(edims[1], 6u);
+  // one open chain of 7 nodes is one XDMF polyline: cell type 2, 7 nodes, the nodes in order
+  std::vector<hsize_t> ldims;
+  auto lines = h5::read_doubles(f, "connectivity/polylines/value", &ldims);
+  ASSERT_EQ(ldims.size(), 3u);
+  EXPECT_EQ(ldims[1], 9u);
+  std::vector<double> first(lines.begin(), lines.begin() + 9);
+  EXPECT_EQ(first, (std::vector<double>{2, 7, 0, 1, 2, 3, 4, 5, 6}));
   std::ifstream x(file + ".xdmf");
   std::stringstream ss;
   ss << x.rdbuf();
-  EXPECT_NE(ss.str().find("Polyline"), std::string::npos);
+  EXPECT_NE(ss.str().find("TopologyType=\"Mixed\" NumberOfElements=\"1\""), std::string::npos);
+  EXPECT_NE(ss.str().find("test_dump.h5:/connectivity/polylines/value"), std::string::npos);
   EXPECT_NE(ss.str().find("test_dump.h5:/particles/all/velocity/value"), std::string::npos);
   std::remove(file.c_str());
   std::remove((file + ".xdmf").c_str());

@@ -3,7 +3,7 @@
 -- same data file (2D spiral, 3D self-avoiding random walk), stretching k = 1000, bending 60,
 -- frictional contact (mu = 0.3), a harmonic circular (2D) or spherical (3D) wall and viscous
 -- damping 0.1, velocity Verlet, dt = 0.02. Ours uses its own models for the same physics:
--- 2D node-edge contact with the quadratic law of MODELS.md §2.3, 3D a discrete elastic rod
+-- 2D node-edge contact with the quadratic law of docs/models.md §2.3, 3D a discrete elastic rod
 -- (rod/straight, YI = 60 stores the peer's 30 theta^2 per hinge) with segment-segment
 -- contact of radius 0.5 and the linear law of §5.1, instead of bead-bead Hertz; chain
 -- neighbours excluded.

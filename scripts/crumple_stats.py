@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Statistics of 2D crumpling runs (MODELS.md §2.7, §2.8; thesis eq. 3.3):
+"""Statistics of 2D crumpling runs (docs/models.md §2.7, §2.8; thesis eq. 3.3):
 
   loops     N_l ~ phi^gamma and contacts N_c ~ phi^mu, log-log fits over the thermo
             CSVs of crumpling runs (columns feed.phi, loops.loops,
@@ -9,7 +9,7 @@
   spiral    bending energy E_b(phi) of the spiral scene against the analytic spiral
             model of §2.8, both the thesis' printed form (3.10) and the corrected one,
             the constant C matched at the first sample
-  jam       where a run jams under each stop rule of MODELS.md §2.4: the packing
+  jam       where a run jams under each stop rule of docs/models.md §2.4: the packing
             density at which the averaged injection force (feed.force_avg) first
             exceeds each threshold F_stop, and where it first grows tenfold within
             dphi = 0.005; the e-folding dphi of F near the stop says how much phi_jam
@@ -147,7 +147,7 @@ def mode_force(a):
 
 
 def spiral_model(phi, R, d, YI, printed):
-    """Bending energy of the spiral model (MODELS.md §2.8) up to the constant C."""
+    """Bending energy of the spiral model (docs/models.md §2.8) up to the constant C."""
     Rc = 0.5 * (d + np.sqrt(d * d + 4 * R * R * (1 - phi)))            # (3.4)
     core = 4 * math.pi * YI / Rc                                        # E_c as printed
     if printed:
@@ -210,7 +210,7 @@ def first_crossing(phi, F, level):
 
 
 def first_growth(phi, F, factor, dphi):
-    """First phi where F exceeds factor times its value at phi - dphi (MODELS.md §2.4)."""
+    """First phi where F exceeds factor times its value at phi - dphi (docs/models.md §2.4)."""
     for i in range(len(phi)):
         j = np.searchsorted(phi, phi[i] - dphi)
         if phi[i] - phi[j] <= dphi and F[j] > 0 and F[i] > factor * F[j]:

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where the straight wire first buckles, against the feed speed (MODELS.md §7.2: "the
+"""Where the straight wire first buckles, against the feed speed (docs/models.md §7.2: "the
 straight wire first buckles up or down and stays stable until it first touches the wall").
 
 Runs a crumpling deck from its straight start until `--feed` d of wire (per channel, as a

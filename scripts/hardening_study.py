@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """How the morphology of a crumpling deck depends on the hardening slope K_h of the bending
-law (MODELS.md §2.2: K_h is not given by the thesis; the decks take the [C] default
+law (docs/models.md §2.2: K_h is not given by the thesis; the decks take the [C] default
 0.05 K_e). Runs the deck for each hardening ratio K_h/K_e and seed until max_phi (or to the
 jam), and measures the final wire:
-  - ab_ratio, winding, loops, contacts: as the deck reports them (MODELS.md §2.7);
+  - ab_ratio, winding, loops, contacts: as the deck reports them (docs/models.md §2.7);
   - wall_contacts: wire-wall contacts at the end (thermo column cavity.contacts);
   - outer_share: the share of the wire inside the cavity that lies beyond 0.7 r (the outer
     ring holds 51 % of the area; loop cascades along the wall fill it, folds along the feed
@@ -79,7 +79,7 @@ def write_tables(rows, out, title):
         w.writeheader()
         w.writerows(rows)
     with open(out + ".md", "w") as fh:
-        fh.write(f"# {title}\n\nWritten by `scripts/hardening_study.py`. A/B < 0.5 is classic by the MODELS.md "
+        fh.write(f"# {title}\n\nWritten by `scripts/hardening_study.py`. A/B < 0.5 is classic by the docs/models.md "
                  "§2.7 criterion; outer share = wire beyond 0.7 r; half width = 90th percentile of |y|/r.\n\n")
         fh.write("| K_h/K_e | seed | phi | jammed | A/B | winding | loops | contacts | wall contacts | "
                  "outer share | half width | steps | wall s |\n|" + "---|" * 13 + "\n")

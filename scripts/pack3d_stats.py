@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
-"""Analysis of a 3D packing run (examples/pack3d; MODELS.md §5.4):
+"""Analysis of a 3D packing run (examples/pack3d; docs/models.md §5.4):
 
 - E_b R / YI and F R^2 / YI against phi, with the inverse-spool (Purohit) model
   (4.50)-(4.60) for the strand spacing d_s (default 2.81 a: k = 1.6796, the model
-  ends at phi = 0.4594), with the hoop energy prefactor pi of MODELS.md [R];
+  ends at phi = 0.4594), with the hoop energy prefactor pi of docs/models.md §5.4 [R];
 - R_g / R against phi with the model's R_g^2 / R^2 = 1 - 2/5 k phi^(2/3);
 - the distribution of the per-node bending energy x = E_i / <E> in the last frame
   of the trajectory (nodes inside the sphere, logarithmic bins) with a log-normal fit
   (4.49) by maximum likelihood (mu = mean ln x, sigma = std ln x), and the
   Kolmogorov-Smirnov distance of the fit;
-- the strand spacing d_s measured from cross-sections (MODELS.md §7.2 W3-5): the
+- the strand spacing d_s measured from cross-sections (docs/models.md §7.2 W3-5): the
   rod cut by planes through the feed axis (z), and in each plane the distance from
   every strand's section to its nearest other section and the mean distance to its six
   nearest; in the hexagonal packing of the inverse-spool model both are d_s (the
@@ -122,7 +122,7 @@ def near_pairs(p, cutoff):
 
 
 def packing_order(pos, edges, R, a=1.0, cutoff=3.0, exclude=4, column=0.25):
-    """How ordered a packing is (MODELS.md §7.2 W3-1 against W3-2: onion-like shells
+    """How ordered a packing is (docs/models.md §7.2 W3-1 against W3-2: onion-like shells
     round an empty column along the feed axis z, against a disordered homogeneous
     filling). For the edges inside the sphere:
     - local_order: the mean of P2(t_i . t_j) = (3 (t_i . t_j)^2 - 1) / 2 over pairs of

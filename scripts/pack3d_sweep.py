@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Maximum packing fraction against a/R for the 3D packing decks (MODELS.md §5.4):
+"""Maximum packing fraction against a/R for the 3D packing decks (docs/models.md §5.4):
 runs examples/pack3d/<setup>.lua for each sphere radius R and seed until the stop
 force, and writes <out>.csv (one row per run, appended at once, so an interrupted
 sweep resumes where it stopped) and <out>.png (phi_max against a/R with a power-law

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Morphological phase diagram of the 2D crumpled wire (W2-4, MODELS.md §7.2):
+"""Morphological phase diagram of the 2D crumpled wire (W2-4, docs/models.md §7.2):
 yield curvature kappa_theta x static friction mu_st, several seeds per point, each
-run to jamming and classified (MODELS.md §2.7):
+run to jamming and classified (docs/models.md §2.7):
 
   spiral   winding of a half of the wire >= 2 turns and at most 2 loops
   classic  A/B < 0.5 (squared curvature concentrated near the wall)

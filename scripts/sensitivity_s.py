@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Sensitivity of the 2D crumpling results to the thesis' undefined parameter s
-(MODELS.md §2.6): reading (a) s = injection speed (with K_h = 0.05 K_e), reading (b)
+(docs/models.md §2.6): reading (a) s = injection speed (with K_h = 0.05 K_e), reading (b)
 s = hardening ratio K_h/K_e (with a fixed feed speed). Runs a crumpling deck to
 jamming for each value under each reading, two runs at a time, and writes a CSV
 and a Markdown table of the jamming density, injection force, contacts and the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Core radius R_C of the e-cone against the thickness h (MODELS.md §6.11, §7.2 S-1):
+"""Core radius R_C of the e-cone against the thickness h (docs/models.md §6.11, §7.2 S-1):
 runs examples/shells/econe.lua without self-contact up to phi_e (default 3, below the
 first contact of every h) on a disc of outer edge `--edge` (default 1/8) whose core is
 refined `level` times (refine_center = 0.3), for each h and level, and writes <out>.csv (one row per

@@ -39,7 +39,7 @@ from slender.run import run_deck  # noqa: E402
 import work_precision as wp  # noqa: E402  (number parsing, Markdown escaping, git describe)
 
 EX = REPO / "examples"
-THEORY_KISS = 7.08  # MODELS.md A-1: phi_e^kiss -> 7.08 as h -> 0
+THEORY_KISS = 7.08  # docs/models.md §7.1 A-1: phi_e^kiss -> 7.08 as h -> 0
 
 
 def nodes_h(n):  # a chain of n nodes on a unit length: segment length
@@ -95,14 +95,14 @@ CASES = [
          reference="tip deflection of the extensible elastica with the wire's EA (shooting on "
                    "theta'(0), RK4 + bisection, in the deck); alpha = PL^2/EI = 0.01, where it "
                    "equals Euler-Bernoulli PL^3/3EI to 1e-4",
-         source="Timoshenko & Gere, Theory of Elastic Stability, §2; MODELS.md §2.1"),
+         source="Timoshenko & Gere, Theory of Elastic Stability, §2; docs/models.md §2.1"),
     dict(id="cantilever_large", family="wire 2D", title="2D cantilever, large deflection",
          deck="validation/cantilever2d.lua", fixed={"alpha": 3, "model": "bend2d"},
          ladder=("nodes", [11, 21, 41, 81], [11, 21, 41]), h=nodes_h,
          integrators=(["verlet", "gear5", "fire"], ["fire"]), order=1.8, dt_ladder=True,
          reference="tip position of the extensible elastica at alpha = 3 (shooting, in the deck; "
                    "scripts/elastica.py re-derives it independently to 1e-10)",
-         source="Bisshopp & Drucker, Q. Appl. Math. 3 (1945) 272; MODELS.md §2.1"),
+         source="Bisshopp & Drucker, Q. Appl. Math. 3 (1945) 272; docs/models.md §2.1"),
     dict(id="buckling_pinned_2d", family="wire 2D", title="2D Euler buckling, pinned-pinned",
          deck="validation/buckling2d.lua", fixed={"bc": "pinned", "model": "bend2d"},
          ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
@@ -118,7 +118,7 @@ CASES = [
          deck="validation/buckling2d.lua", fixed={"bc": "clamped", "model": "rod3d"},
          ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
          integrators=(["fire"], ["fire"]), order=1.6,
-         reference="critical load pi^2 YI / (4 L^2)", source="Timoshenko & Gere §2.1; MODELS.md §3"),
+         reference="critical load pi^2 YI / (4 L^2)", source="Timoshenko & Gere §2.1; docs/models.md §3"),
     dict(id="buckling_clamped_cosserat", family="rod 3D",
          title="3D Euler buckling, clamped-free, quaternion Cosserat rod",
          deck="validation/buckling2d.lua",
@@ -132,13 +132,13 @@ CASES = [
                    "moved this result by about 1e-3. The coupling C acts like a shear "
                    "compliance: at C = EA the error stops at 9e-4 from 21 nodes on, the report "
                    "uses C = 10 EA (floor about 1e-4)",
-         source="Timoshenko & Gere §2.1; MODELS.md §4"),
+         source="Timoshenko & Gere §2.1; docs/models.md §4"),
     dict(id="cantilever_rod3d", family="rod 3D", title="3D cantilever (alpha = 3), discrete elastic rod",
          deck="validation/cantilever2d.lua", fixed={"alpha": 3, "model": "rod3d"},
          ladder=("nodes", [11, 21, 41], [11, 21]), h=nodes_h,
          integrators=(["fire"], ["fire"]), order=1.6,
          reference="the 2D elastica tip position (the rod bends in a plane)",
-         source="as the 2D cantilever; MODELS.md §3"),
+         source="as the 2D cantilever; docs/models.md §3"),
     dict(id="cantilever_cosserat", family="rod 3D", title="3D cantilever (alpha = 3), quaternion Cosserat rod",
          deck="validation/cantilever2d.lua", fixed={"alpha": 3, "model": "cosserat", "coupling_factor": 10},
          fast_fixed={"coupling_factor": 1},
@@ -147,7 +147,7 @@ CASES = [
          reference="the 2D elastica tip position. The coupling C (t - d3)^2 acts like a shear "
                    "compliance, an error floor that falls as 1/C: with C = EA the error stops at "
                    "6e-4 to 9e-4 from 21 nodes on; the report uses C = 10 EA (the fast check EA)",
-         source="as the 2D cantilever; MODELS.md §4"),
+         source="as the 2D cantilever; docs/models.md §4"),
     dict(id="michell", family="rod 3D", title="Michell's instability of a twisted ring (Cosserat rod)",
          deck="validation/michell.lua", fixed={"iterations": 14, "criterion": "static"},
          fast_fixed={"iterations": 8},
@@ -158,7 +158,7 @@ CASES = [
                    "sign of the lowest eigenvalue of its stiffness matrix; the damped-dynamics "
                    "trials of -v criterion=dynamic gave 1.3e-1 / 3.5e-3 / 8.5e-4 at 12 / 24 / 48 "
                    "nodes in minutes)",
-         source="Michell, Messenger of Math. 19 (1889) 181; Goriely, J. Elasticity 84 (2006) 281; MODELS.md A-2"),
+         source="Michell, Messenger of Math. 19 (1889) 181; Goriely, J. Elasticity 84 (2006) 281; docs/models.md §7.1 A-2"),
     dict(id="plate_ss", family="shell", title="Square plate under uniform load, simply supported",
          deck="validation/plate_load.lua", fixed={"support": "simply_supported"},
          ladder=("n", [8, 16, 32], [8, 16]), h=lambda n: 1.0 / int(n),
@@ -170,7 +170,7 @@ CASES = [
          ladder=("n", [8, 16, 32], [8, 16]), h=lambda n: 1.0 / int(n),
          integrators=(["fire", "lbfgs"], ["lbfgs"]), order=0.8,
          reference="centre deflection 0.00126 q a^4 / D (nu = 0.3); first order: the clamp fixes "
-                   "MODELS.md's three rows of nodes",
+                   "the three rows of nodes of docs/models.md §6.7",
          source="Timoshenko & Woinowsky-Krieger, Table 35"),
     dict(id="cylinder", family="shell", title="Cylindrical bending of a Koiter shell",
          deck="validation/cylinder_bend.lua", fixed={},
@@ -187,21 +187,21 @@ CASES = [
          reference="phi_e^kiss -> 7.08 as h -> 0 (vanishing-thickness theory); at h = 0.02 the "
                    "difference mixes discretisation with the finite thickness, and the uniform "
                    "meshes under-resolve the core (refine_center/refine_levels refine it)",
-         source="MODELS.md A-1 and §7.2 S-1"),
+         source="docs/models.md §7.1 A-1 and §7.2 S-1"),
     dict(id="spiral_energy", family="wire 2D", title="Spiral-phase bending energy against its analytic model",
          deck="crumple2d/spiral.lua", fixed={"output": "false"},
          ladder=("f", [10], [10]), h=lambda f: 1.0 / float(f),
          fast_fixed={"fast": 1}, integrators=(["gear5"], ["gear5"]), order=None, metric=spiral_metric,
          reference="E_b(phi) = E_core + pi YI/d ln(R/R_c) + C (the corrected §2.8 model, C by least "
                    "squares), median relative deviation for phi <= 0.75",
-         source="MODELS.md §2.8, A-3"),
+         source="docs/models.md §2.8, §7.1 A-3"),
     dict(id="spool", family="rod 3D", title="Ordered 3D packing against the inverse spool",
          deck="pack3d/low_torsion.lua", fixed={"output": "false"},
          ladder=("R", [5], [4]), h=lambda R: 1.0 / float(R),
          integrators=(["gear6"], ["gear6"]), order=None, metric=spool_metric,
          reference="bending energy E_b R / YI of Purohit's inverse spool (d_s = 2.81 a), median "
                    "relative deviation for 0.1 <= phi <= 0.3",
-         source="Purohit, Kondev & Phillips, PNAS 100 (2003) 3173; MODELS.md §5"),
+         source="Purohit, Kondev & Phillips, PNAS 100 (2003) 3173; docs/models.md §5.4"),
 ]
 CASE_IDS = [c["id"] for c in CASES]
 

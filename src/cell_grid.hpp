@@ -1,4 +1,4 @@
-// Linked cells shared by the contact pair styles (MODELS.md §2.3, §5.1): items
+// Linked cells shared by the contact pair styles (docs/models.md §2.3, §5.1): items
 // (nodes, edge midpoints) are binned by a counting sort into a uniform grid over
 // a bounding box, and a query visits the items of the 3^dim cells around a point.
 // The same grid serves 2D (one layer of cells) and 3D.
@@ -15,7 +15,7 @@ namespace slender {
 
 // When a contact pair list (pairs within the cut-off plus a skin) must be rebuilt:
 // every N steps if asked, else as soon as some node moved more than skin/2 since
-// the last build, so no pair can come into contact unlisted (MODELS.md §2.3, §5.1).
+// the last build, so no pair can come into contact unlisted (docs/models.md §2.3, §5.1).
 class RebuildSchedule {
  public:
   static void declare(ParamSpec& s, const std::string& skin_help) {

@@ -1,5 +1,5 @@
 // The contact law shared by wire-wire (pair) and wire-wall (fix) contacts,
-// MODELS.md §2.3: normal repulsion k (d - dist)^p with a normal dashpot (never
+// docs/models.md §2.3: normal repulsion k (d - dist)^p with a normal dashpot (never
 // attractive), and stick-slip Coulomb friction with a tangential stick spring.
 #pragma once
 
@@ -91,7 +91,7 @@ struct ContactLaw {
     auto& k = s.real("stiffness", "normal stiffness k_c: F_N = k_c overlap^p").positive();
     if (stiffness_required) k.required();
     s.real("exponent",
-           "normal force law exponent p (2: quadratic as in 2D, MODELS.md §2.3; 1: "
+           "normal force law exponent p (2: quadratic as in 2D, docs/models.md §2.3; 1: "
            "linear as the 3D rods, §5.1)")
         .def(default_exponent)
         .min(1.0)

@@ -1,4 +1,4 @@
-// Geometry of a 2D hinge (interior node m between nodes a and b), MODELS.md §2.1:
+// Geometry of a 2D hinge (interior node m between nodes a and b), docs/models.md §2.1:
 // the signed turning angle zeta = atan2(e0 x e1, e0 . e1) with e0 = x_m - x_a,
 // e1 = x_b - x_m, its exact gradients dzeta/dx_b = z x e1/|e1|^2,
 // dzeta/dx_a = z x e0/|e0|^2, dzeta/dx_m = -(both), with z x v = (-v_y, v_x).

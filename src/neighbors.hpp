@@ -3,7 +3,7 @@
 // skin of its list, or a fixed interval); the service keeps one copy of the positions at
 // the last common build and scans the displacements once per evaluation for all requests.
 // When one list is due, all are rebuilt together, so that one copy serves them all and no
-// pair can come into contact unlisted (MODELS.md §2.3, §5.1): a list is valid while no node
+// pair can come into contact unlisted (docs/models.md §2.3, §5.1): a list is valid while no node
 // has moved more than half its skin since it was built.
 //
 // A scene without contact styles makes no request, holds no copy and scans nothing.

@@ -1,9 +1,9 @@
-// Kinematics and energies of the quaternion Cosserat rod (MODELS.md §4): one unit
+// Kinematics and energies of the quaternion Cosserat rod (docs/models.md §4): one unit
 // quaternion per edge gives the material frame {d1, d2, d3}; the discrete Darboux
 // vector at a vertex from the two neighbouring quaternions; bending/torsion energy
 // against a rest Darboux vector; the penalty that ties d3 to the edge tangent.
 // Quaternions are scalar-first, q = (q0, q1, q2, q3), and need not be unit length
-// here: the formulas are the functions of q that MODELS.md defines, and their
+// here: the formulas are the functions of q that docs/models.md §4 defines, and their
 // gradients are exact for any q (the style keeps |q| = 1).
 #pragma once
 
@@ -15,7 +15,7 @@ namespace slender::qrod {
 
 using Quat = Eigen::Vector4d;  // (q0, q1, q2, q3)
 
-// B_j q for the skew matrices B_1..B_3 of MODELS.md §4.2 (scalar-first ordering),
+// B_j q for the skew matrices B_1..B_3 of docs/models.md §4.2 (scalar-first ordering),
 // so that k_j = 2 (B_j q) . q' for a unit quaternion field.
 inline Quat B(int j, const Quat& q) {
   switch (j) {
@@ -42,7 +42,7 @@ inline Vec3 d3(const Quat& q) {
   return Vec3(2 * (q[1] * q[3] + q[0] * q[2]), 2 * (q[2] * q[3] - q[0] * q[1]),
               q[0] * q[0] - q[1] * q[1] - q[2] * q[2] + q[3] * q[3]);
 }
-// J3 = d d3 / d q (3 x 4), MODELS.md §4.4
+// J3 = d d3 / d q (3 x 4), docs/models.md §4.4
 inline Eigen::Matrix<double, 3, 4> J3(const Quat& q) {
   Eigen::Matrix<double, 3, 4> J;
   J << q[2], q[3], q[0], q[1], -q[1], -q[0], q[3], q[2], q[0], -q[1], -q[2], q[3];

@@ -1,5 +1,5 @@
 // A pixel image of 2D wires inside a circular cavity, shared by the loop count and
-// the fractal dimension (MODELS.md §2.7): the wire is drawn as a thick line through
+// the fractal dimension (docs/models.md §2.7): the wire is drawn as a thick line through
 // its nodes, every wire pixel remembers which wire and arclength it belongs to, and
 // pixels outside the cavity are marked as wall.
 #pragma once

@@ -142,7 +142,7 @@ ParamSpec mesh_spec() {
   s.real("edge", "target edge length (disc default: 5 refinements of a hexagon)").positive();
   s.real("refine_center",
          "disc: radius of a core refined refine_levels more times (red-green, level k within "
-         "refine_center / 2^(k-1)), to resolve an e-cone's apex (MODELS.md §6.12)")
+         "refine_center / 2^(k-1)), to resolve an e-cone's apex (docs/models.md §6.12)")
       .def(0.0)
       .nonnegative();
   s.integer("refine_levels", "disc: extra refinement levels of the core (edge / 2^levels there)")
@@ -156,7 +156,7 @@ ParamSpec mesh_spec() {
   s.vector("center", "translation applied to the mesh")
       .def(std::vector<double>{0, 0, 0})
       .length(3, 3);
-  s.real("noise", "seeded uniform displacement amplitude along the normal (MODELS.md §6.12)")
+  s.real("noise", "seeded uniform displacement amplitude along the normal (docs/models.md §6.12)")
       .def(0.0)
       .nonnegative();
   s.string("write", "write the control mesh (without ghosts) to this OBJ/OFF file");

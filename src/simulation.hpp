@@ -46,7 +46,7 @@ struct GuardOptions {
 };
 
 // Generalised coordinates integrated besides the node positions: four components
-// per node (the edge quaternions of a Cosserat rod, MODELS.md §4.4) with their
+// per node (the edge quaternions of a Cosserat rod, docs/models.md §4.4) with their
 // velocities, generalised forces and scalar masses. A unit set stays on |q| = 1:
 // its forces are projected onto the tangent space and the integrators renormalise
 // q and remove the radial part of its derivatives after every step.
@@ -214,7 +214,7 @@ class Simulation {
   // Highest frequency of all stiff terms, and the dt the integrator can take.
   double omega_max(std::string* who = nullptr) const;
   double suggest_dt(double safety = 1.0) const;
-  // The same bound with the contacts as they are now (MODELS.md has no such term: it is the
+  // The same bound with the contacts as they are now (docs/models.md has no such term: it is the
   // measured stiffness of several contacts per node and deep overlaps), never below the
   // nominal one; `who` names the stiffest term. Cheap: the nominal values are cached per run.
   double omega_now(std::string* who = nullptr) const;

@@ -154,7 +154,7 @@ class FixStyle : public Style {
   bool measures_frequency() const override { return true; }
 };
 
-// Thin shells on triangle meshes (MODELS.md §6): their own family, evaluated
+// Thin shells on triangle meshes (docs/models.md §6): their own family, evaluated
 // before bonds and pairs because they also place the ghost nodes of their mesh.
 class ShellStyle : public Style {
  public:
@@ -170,7 +170,7 @@ class ShellStyle : public Style {
 };
 
 // In-plane growth tensors G(X, t) of the multiplicative decomposition F = A G
-// (MODELS.md §6.2, §6.9), evaluated at reference positions.
+// (docs/models.md §6.2, §6.9), evaluated at reference positions.
 class GrowthStyle : public Style {
  public:
   static const char* family() { return "growth"; }

@@ -1,5 +1,5 @@
 -- Purpose: injection force against packing density by the thesis' protocol (W2-7,
--- MODELS.md §2.4 and §7.2): at every sampled phi the feed stops, the wire relaxes
+-- docs/models.md §2.4 and §7.2): at every sampled phi the feed stops, the wire relaxes
 -- to rest, and the force on the channel nodes is read; then the feed goes on, up
 -- to jamming. Writes force_samples.csv (phi, force, ...); scripts/crumple_stats.py fits
 -- F ~ (phi_c - phi)^beta.

@@ -1,4 +1,4 @@
--- Purpose: the thesis' plastic scene (W2-3, MODELS.md §7.2): starts like the classic
+-- Purpose: the thesis' plastic scene (W2-3, docs/models.md §7.2): starts like the classic
 -- one, then the symmetry breaks and loops rearrange; higher final packing density.
 -- Expected run time: f = 10 (fast mode, -v fast=1): ~2 s; f = 25: ~40 s; f = 100: not yet
 -- timed (twice the classic's steps per unit of phi: its feed is half as fast).

@@ -1,4 +1,4 @@
--- Purpose: the thesis' spiral scene (W2-2, MODELS.md §7.2): an elastic, frictionless
+-- Purpose: the thesis' spiral scene (W2-2, docs/models.md §7.2): an elastic, frictionless
 -- wire winds into two nested spirals round an S-shaped core and can fill the cavity.
 -- Expected run time: f = 10 (fast mode, -v fast=1): ~2 s; f = 100: hours (it packs towards phi = 1).
 -- Thesis parameters: f = 100, kappa_theta = pi/2 (effectively elastic), mu_st = 0,

@@ -1,4 +1,4 @@
--- Purpose: the high-torsion packing (MODELS.md §4, §4.5, §5; thesis ch. 4): a
+-- Purpose: the high-torsion packing (docs/models.md §4, §4.5, §5; thesis ch. 4): a
 -- precurved rod with frames (quaternion Cosserat rod) whose rotation is held in the
 -- nozzle, so torsion builds up as it is fed into the sphere; stop at the force
 -- threshold of lib/scene.lua.
@@ -7,7 +7,7 @@
 -- R = 20: ~2 days (projected: steps and nodes both grow as R^3); 6 h with
 -- -v coupling_factor=2 -v rot_inertia_factor=4 (63.7 M steps to its jam at phi = 0.385).
 -- Thesis parameters: a = 1, Y = 1000, nu = 0.33, mu_s = 0.2, mu_d = 0.18, intrinsic
--- radius of curvature R_i = 100 (kbar = (0, 1/R_i, 0), MODELS.md §4.5: the thesis'
+-- radius of curvature R_i = 100 (kbar = (0, 1/R_i, 0), docs/models.md §4.5: the thesis'
 -- "k_y = 0.001" contradicts its R_i = 100; -v R_i=1000 runs that reading).
 local R_i = slender.var("R_i", 100.0)
 require("lib.scene").run { name = "high_torsion", R = 10, rotation = "held", jam_time = 0.5756,
@@ -15,12 +15,12 @@ require("lib.scene").run { name = "high_torsion", R = 10, rotation = "held", jam
     local nu = 0.33
     local J = math.pi / 2          -- polar moment of a unit-radius section
     local G = 1000 / (2 * (1 + nu))
-    -- coupling C = coupling_factor * YA (MODELS.md §4.2 leaves C open): |t - d3| falls as 1/C;
+    -- coupling C = coupling_factor * YA (docs/models.md §4.3 leaves C open): |t - d3| falls as 1/C;
     -- measured at R = 4: 0.134 / 0.0126 / 0.0056 / 0.0013 at 1 / 10 / 20 / 100 for 1 / 2.2 / 2.8 / 6.5
-    -- times the run time; 20 keeps it below the 1e-2 MODELS.md asks for
+    -- times the run time; 20 keeps it below the 1e-2 docs/models.md §4.3 asks for
     sim:bond("rod/cosserat", { YI = k.YI, GJ = G * J, coupling = slender.var("coupling_factor", 20) * k.YA,
                                rest_curvature = { 0, 1 / R_i, 0 },
-                               -- rho J (rho = 1); MODELS.md §4.2 allows a larger m_q in quasi-static
+                               -- rho J (rho = 1); docs/models.md §4.4 allows a larger m_q in quasi-static
                                -- runs where it limits the step: -v rot_inertia_factor=
                                rot_inertia = slender.var("rot_inertia_factor", 1.0) * J,
                                node_energy = true })

@@ -1,4 +1,4 @@
--- Purpose: the low-torsion packing (MODELS.md §3, §5; thesis ch. 4): a naturally
+-- Purpose: the low-torsion packing (docs/models.md §3, §5; thesis ch. 4): a naturally
 -- straight rod, free to twist, modelled as a discrete elastic rod without directors,
 -- fed through a nozzle into a sphere until the injection force reaches 0.01 YA.
 -- Expected run time: R = 4 (fast mode, -v R=4): ~1 s; R = 10: ~2 min; R = 20

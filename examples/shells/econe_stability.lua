@@ -1,4 +1,4 @@
--- E-cone stability (MODELS.md §7.2 S-2): phi_e rises with static friction between the contacting
+-- E-cone stability (docs/models.md §7.2 S-2): phi_e rises with static friction between the contacting
 -- wings (the symmetric branch, contact planes at gamma = pi/2), friction is released at phi_top and the
 -- cone relaxes to the skewed branch, which is then followed back down to the kissing angle. The critical
 -- angle phi_crit, above which the symmetric cone does not survive the release, is bisected over the

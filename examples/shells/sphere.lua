@@ -1,4 +1,4 @@
--- Growth inside a sphere versus crumpling in a shrinking sphere (MODELS.md §7.2 S-6, S-7): a disc of
+-- Growth inside a sphere versus crumpling in a shrinking sphere (docs/models.md §7.2 S-6, S-7): a disc of
 -- radius 1 in a rigid sphere of radius 1, either grown isotropically, G = (1 + tau t), in the fixed sphere
 -- (-v mode=grow) or kept and confined by a sphere shrinking as R_s = 1 / (1 + tau t) (-v mode=shrink).
 -- Both follow the same confinement ratio f = D / R_s = 2 (1 + tau t) (D: free diameter of the disc), so
@@ -28,12 +28,12 @@ if mode == "grow" then
   shell.growth = "g"
   -- integrate over the grown area (det G): the thesis' default leaves it out, which for
   -- this uniform growth scales E_b by 1 / (1 + tau t)^2 and would bias the comparison of
-  -- the two runs' energies at equal f (MODELS.md §6.3 [R])
+  -- the two runs' energies at equal f (docs/models.md §6.2 [R])
   shell.growth_area_factor = true
 end
 sim:shell("koiter", shell)
 sim:pair("contact/shell", {mesh = "disc", thickness = h, young = young, dense = "all"})
--- container (MODELS.md §6.10): f = k_ct (|x| + h/2 - R_s)^2 / (h/2)^2, k_ct = Y h edge, frictionless
+-- container (docs/models.md §6.10): f = k_ct (|x| + h/2 - R_s)^2 / (h/2)^2, k_ct = Y h edge, frictionless
 local k_ct = young * h * edge
 sim:fix("sphere", "wall/sphere", {radius = 1.0, diameter = h, stiffness = k_ct / (h / 2) ^ 2,
                                   exponent = 2, group = "disc", shrink_rate = mode == "shrink" and tau or 0})

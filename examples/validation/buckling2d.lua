@@ -53,7 +53,7 @@ local function buckles(P)
   sim:wire { name = "col", points = pts, mass = h }
   sim:bond("spring", { k = EA / h })
   if model == "rod3d" then
-    sim:bond("rod/straight", { YI = EI })  -- MODELS.md §3
+    sim:bond("rod/straight", { YI = EI })  -- docs/models.md §3
   elseif model == "cosserat" then
     -- rotational inertia per unit length, as a multiple of h^2: stability does not
     -- depend on it (it is a static property), only the time the criterion takes

@@ -32,11 +32,11 @@ local P = alpha * EI / L ^ 2
 local sim = slender.simulation { dimension = dim, seed = 1 }
 -- N + 1 nodes: the clamped pair at -h/2 and h/2, then the free nodes up to the tip at L
 sim:wire { name = "beam", nodes = N + 1, spacing = h, start = vec(-h / 2, 0), direction = vec(1, 0), mass = h }
-sim:bond("spring", { k = EA / h })  -- k1 = EA / l0 (MODELS.md §1)
+sim:bond("spring", { k = EA / h })  -- k1 = EA / l0 (docs/models.md §1)
 if model == "rod3d" then
-  sim:bond("rod/straight", { YI = EI })  -- MODELS.md §3
+  sim:bond("rod/straight", { YI = EI })  -- docs/models.md §3
 elseif model == "cosserat" then
-  -- MODELS.md §4 with C = coupling_factor EA; a light, critically damped frame
+  -- docs/models.md §4 with C = coupling_factor EA; a light, critically damped frame
   -- (rotational inertia is not part of a static reference). The coupling penalty lets
   -- the tangent leave d3 like a shear compliance: an error floor that falls as 1/C
   -- (alpha = 3, 41 nodes: 8.9e-4 at C = EA, 1.4e-4 at 10 EA; dt and cost go as sqrt(C))

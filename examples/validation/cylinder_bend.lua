@@ -1,4 +1,4 @@
--- Purpose: cylindrical bending of a Koiter shell (MODELS.md §6): a flat strip wrapped isometrically on a
+-- Purpose: cylindrical bending of a Koiter shell (docs/models.md §6): a flat strip wrapped isometrically on a
 -- cylinder of radius rho stores the bending energy D kappa^2 A / 2 (kappa = 1/rho, D = Y h^3 / (12 (1 - nu^2)),
 -- A = L W; Timoshenko & Woinowsky-Krieger, "Theory of Plates and Shells", §2, pure bending into a cylinder).
 -- The shell's energy is evaluated on the wrapped control net (free ghosts wrapped with it), no relaxation.

@@ -1,4 +1,4 @@
--- Purpose: Michell's instability of a twisted elastic ring (MODELS.md §4.5, §7.1 A-2):
+-- Purpose: Michell's instability of a twisted elastic ring (docs/models.md §4.5, §7.1 A-2):
 -- a closed, naturally straight rod bent into a circle and twisted by a total angle
 -- Theta stays planar below Theta_c = 2 pi sqrt(3) YI / GJ and buckles out of plane
 -- above it. Found by bisection over runs of the quaternion Cosserat rod (damped
@@ -9,7 +9,7 @@
 -- wire", Messenger of Mathematics 19, 181-184; derived e.g. in Goriely, "Twisting
 -- and buckling: a short history of Michell's instability" (J. Elasticity 84, 2006):
 -- a closed ring of bending stiffness B = YI and twist stiffness C = GJ with total
--- twist Tw is stable for Tw < 2 pi sqrt(3) B / C. (MODELS.md notes that the thesis
+-- twist Tw is stable for Tw < 2 pi sqrt(3) B / C. (docs/models.md §4.5 notes that the thesis
 -- prints the ratio upside down.) The twist is imposed as a rest twist kbar3 =
 -- -Theta / L on untwisted frames, which loads the ring with the same uniform
 -- twisting moment GJ Theta / L as twisting its frames by Theta.

@@ -38,7 +38,7 @@ std::array<ShapeRow, 12> box_splines(double vv, double ww) {
   const Jet u2 = u * u, u3 = u2 * u, u4 = u3 * u;
   const Jet v2 = v * v, v3 = v2 * v, v4 = v3 * v;
   const Jet w2 = w * w, w3 = w2 * w, w4 = w3 * w;
-  // MODELS.md §6.6 (App. C), times 12
+  // docs/models.md §6.6 (App. C), times 12
   Jet N[12];
   N[0] = u4 + 2 * (u3 * v);
   N[1] = u4 + 2 * (u3 * w);

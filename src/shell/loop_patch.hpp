@@ -1,4 +1,4 @@
-// Loop subdivision limit surface on one element (MODELS.md §6.6): the 12 quartic
+// Loop subdivision limit surface on one element (docs/models.md §6.6): the 12 quartic
 // box-spline functions of a regular patch, and irregular elements by local
 // subdivision until the point lies in a regular child (Alg. 4, cleaned up).
 // Everything is returned as a stencil over the control nodes of the mesh, so the

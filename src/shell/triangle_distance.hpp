@@ -1,4 +1,4 @@
-// Closest points of two triangles of the faceted control mesh (MODELS.md §6.10,
+// Closest points of two triangles of the faceted control mesh (docs/models.md §6.10,
 // dense phase): the minimum over the 6 vertex-triangle and 9 edge-edge distances,
 // which is the triangle-triangle distance whenever the two do not intersect.
 #pragma once

@@ -127,7 +127,7 @@ TriMesh make_disc(double radius, int refinements, double core_radius, int core_l
   } else {
     // red-green refinement of the core, level k within core_radius / 2^(k-1), on the
     // mesh one level coarser; the final global refinement leaves every irregular node
-    // of the green transitions alone in its triangles (MODELS.md §6.6)
+    // of the green transitions alone in its triangles (docs/models.md §6.6)
     for (int r = 0; r + 1 < refinements; ++r) refine(m);
     for (int k = 0; k < core_levels; ++k) {
       const double rk = core_radius / radius / std::pow(2.0, k);

@@ -1,4 +1,4 @@
-// Triangle meshes for the shell family (MODELS.md §6.6, §6.7, §6.12): generators,
+// Triangle meshes for the shell family (docs/models.md §6.6, §6.7, §6.12): generators,
 // OBJ/OFF input and output, Loop's topological refinement, counter-clockwise
 // 1-rings, and the ghost layer that completes the rings of boundary nodes.
 #pragma once

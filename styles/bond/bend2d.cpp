@@ -1,4 +1,4 @@
-// Elastic 2D bending spring at every interior node (MODELS.md §2.1): signed turning
+// Elastic 2D bending spring at every interior node (docs/models.md §2.1): signed turning
 // angle zeta = atan2(e_{i-1} x e_i, e_{i-1}.e_i), moment m = k2 zeta, E = 1/2 k2 zeta^2,
 // and the exact nodal forces F_j = -m dzeta/dx_j.
 #include <cmath>
@@ -15,7 +15,8 @@ class Bend2dBond : public ChainBondStyle {
     ParamSpec s("bond", name,
                 "elastic 2D bending spring on the signed turning angle of each interior node");
     s.real("k", "bending spring k2 = YI/l0 (moment per radian)").required().positive();
-    s.real("damping", "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (MODELS.md §2.1)")
+    s.real("damping",
+           "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (docs/models.md §2.1)")
         .def(0.0)
         .nonnegative();
     declare_chains(s);
@@ -44,7 +45,7 @@ class Bend2dBond : public ChainBondStyle {
               const Hinge2d g(x[a], x[m], x[b]);
               const double zeta = g.zeta;
               double moment = k_ * zeta;
-              // dashpot on the turning rate (MODELS.md §2.1)
+              // dashpot on the turning rate (docs/models.md §2.1)
               if (gamma_ > 0) moment += gamma_ * g.rate(v, a, m, b);
               g.apply(f, c->hinge_first_position(static_cast<int>(h)), a, m, b, moment);
               e_part += 0.5 * k_ * zeta * zeta;

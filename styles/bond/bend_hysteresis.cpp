@@ -1,4 +1,4 @@
-// 2D bending with plastic hysteresis (MODELS.md §2.2): kinematic hardening with a
+// 2D bending with plastic hysteresis (docs/models.md §2.2): kinematic hardening with a
 // smooth quadratic transition. Per interior node the plastic curvature kappa_pl is
 // a node property ("bend.plastic_curvature"), allocated only by this style.
 //
@@ -28,7 +28,7 @@ class BendHysteresisBond : public ChainBondStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("bond", name,
                 "2D bending spring with plastic hysteresis: kinematic hardening, smooth transition "
-                "(MODELS.md §2.2)");
+                "(docs/models.md §2.2)");
     s.real("k", "elastic bending spring k2 = YI/l0 (moment per radian); K_e = k2 l0")
         .required()
         .positive();
@@ -46,7 +46,8 @@ class BendHysteresisBond : public ChainBondStyle {
            "random initial kappa_pl, uniform in +-value (seeded symmetry breaking)")
         .def(0.0)
         .nonnegative();
-    s.real("damping", "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (MODELS.md §2.1)")
+    s.real("damping",
+           "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (docs/models.md §2.1)")
         .def(0.0)
         .nonnegative();
     declare_chains(s);
@@ -101,7 +102,7 @@ class BendHysteresisBond : public ChainBondStyle {
   }
   const char* energy_category() const override { return "bend"; }
 
-  // Moment at curvature kappa; updates kappa_pl by plastic flow (MODELS.md §2.2,
+  // Moment at curvature kappa; updates kappa_pl by plastic flow (docs/models.md §2.2,
   // steps 1-4). *stored gets the recoverable energy per unit rest length: the
   // integral of M(x) at fixed kappa_pl from the zero-moment point x0 (in the linear
   // zone, thanks to the guard) to x, i.e. 1/2 K_e (x - x0)^2 -+ c (x - x_e)^3 / 3.
@@ -181,7 +182,7 @@ class BendHysteresisBond : public ChainBondStyle {
               double stored = 0.0, lost = 0.0;
               const double M = moment(kappa, kpl, Ke, &stored, &lost);
               lost_sum += lost * l0;
-              // the dashpot adds gamma_r dzeta/dt (MODELS.md §2.1)
+              // the dashpot adds gamma_r dzeta/dt (docs/models.md §2.1)
               const double Mt = gamma_ > 0 ? M + gamma_ * g.rate(v, a, m, b) : M;
               g.apply(f, c->hinge_first_position(h), a, m, b, Mt);
               e_part += stored * l0;

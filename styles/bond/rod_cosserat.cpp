@@ -1,4 +1,4 @@
-// Quaternion Cosserat rod (MODELS.md §4, after Spillmann & Teschner): besides the
+// Quaternion Cosserat rod (docs/models.md §4, after Spillmann & Teschner): besides the
 // node positions, one unit quaternion per edge (stored at the edge's first node,
 // generalised coordinates "rod.q" integrated by verlet or gear) gives the material
 // frame. Energies: bending and torsion from the discrete Darboux vector against the
@@ -22,16 +22,17 @@ class CosseratRodBond : public ChainBondStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("bond", name,
                 "quaternion Cosserat rod: bending, torsion and intrinsic curvature from edge "
-                "quaternions, d3 tied to the tangent (MODELS.md §4)");
+                "quaternions, d3 tied to the tangent (docs/models.md §4)");
     s.real("YI", "bending stiffness Y I").required().positive();
     s.real("GJ", "torsional stiffness G J").required().positive();
-    s.real("coupling", "C: stiffness of the penalty tying d3 to the tangent (MODELS.md: C = YA)")
+    s.real("coupling",
+           "C: stiffness of the penalty tying d3 to the tangent (docs/models.md §4.3: C = YA)")
         .required()
         .positive();
     s.vector("rest_curvature", "kbar = (k1, k2, k3): rest Darboux vector in the material frame")
         .def(std::vector<double>{0, 0, 0})
         .length(3, 3);
-    s.real("rot_inertia", "I_r: rotational inertia per length, rho J (MODELS.md §4.4)")
+    s.real("rot_inertia", "I_r: rotational inertia per length, rho J (docs/models.md §4.4)")
         .required()
         .positive();
     s.real("inertia_scale", "multiplies m_q (quasi-static runs whose step it limits)")
@@ -82,7 +83,7 @@ class CosseratRodBond : public ChainBondStyle {
               const double ec =
                   qrod::coupling(q[a], x[a], x[b], c->rest_length[k], C_, fq[a], f[a], f[b]);
               c_part += ec;
-              // |t - d3| from E_c = C/2 |e_rest| |t - d3|^2 (MODELS.md asks for < 1e-2):
+              // |t - d3| from E_c = C/2 |e_rest| |t - d3|^2 (docs/models.md §4.3 asks for < 1e-2):
               // the largest E_c / |e_rest| here, one root after the loop (a root per edge
               // cost a tenth of this function)
               m_part = std::max(m_part, ec / c->rest_length[k]);

@@ -1,10 +1,10 @@
 // Bending of a naturally straight, isotropic 3D rod without directors (a discrete
-// elastic rod after Bergou et al., extensible; MODELS.md §3): at each interior node
+// elastic rod after Bergou et al., extensible; docs/models.md §3): at each interior node
 // the curvature binormal kb = 2 e0 x e1 / (|e0||e1| + e0.e1) (§3.1), bending energy
 // E = YI |kb|^2 / l over the rest vertex length l = |e0_rest| + |e1_rest| (§3.2), and
 // forces from the exact gradients of kb (§3.3). Positions only: twist is taken as
 // relaxed, so a scene with this style allocates no orientation data. Stretching
-// is the `spring` style (k = YA / l0, MODELS.md (4.7)).
+// is the `spring` style (k = YA / l0, docs/models.md §3.3 (4.7)).
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -18,7 +18,7 @@ class StraightRodBond : public ChainBondStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("bond", name,
                 "bending of a straight isotropic rod without directors: discrete elastic rod "
-                "curvature binormal, E = YI |kb|^2 / l (MODELS.md §3)");
+                "curvature binormal, E = YI |kb|^2 / l (docs/models.md §3)");
     s.real("YI", "bending stiffness Y I (moment times length)").required().positive();
     s.boolean("node_energy",
               "keep each node's bending energy in the node property bend.energy (for dumps "

@@ -1,4 +1,4 @@
-// Hookean stretching spring on every edge of the selected chains (MODELS.md §2.1, (3.1)):
+// Hookean stretching spring on every edge of the selected chains (docs/models.md §2.1, (3.1)):
 // E = 1/2 k (|e| - l0)^2; force on the tail node +k(|e|-l0) t, on the head the opposite.
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Fractal dimension of a 2D wire by the mass-radius (sandbox) method (MODELS.md
+// Fractal dimension of a 2D wire by the mass-radius (sandbox) method (docs/models.md
 // §2.7): the wire is rastered with line width d; M(rho) is the number of wire
 // pixels within rho of a centre on the wire; D is the slope of log <M> against
 // log rho, <M> averaged over centres. Centres are wire nodes far enough inside the
@@ -34,7 +34,7 @@ class Fractal2dCompute : public ComputeStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("compute", name,
                 "fractal dimension of a 2D wire by the mass-radius (sandbox) method on a raster "
-                "image of line width d (MODELS.md §2.7)");
+                "image of line width d (docs/models.md §2.7)");
     s.real("radius", "cavity radius r").required().positive();
     s.vector("center", "cavity centre").def(std::vector<double>{0, 0}).length(2, 3);
     s.real("diameter", "wire diameter d (line width of the image)").def(1.0).positive();

@@ -1,4 +1,4 @@
-// Radius of gyration of a group of nodes with their lumped masses (MODELS.md §5.4,
+// Radius of gyration of a group of nodes with their lumped masses (docs/models.md §5.4,
 // (4.56)): R_g^2 = sum m_i |r_i - r_M|^2 / sum m_i, optionally only the nodes inside
 // a sphere (the packed part of a wire, not the part still in the nozzle).
 #include <cmath>
@@ -11,7 +11,8 @@ namespace slender {
 class GyrationCompute : public ComputeStyle {
  public:
   static ParamSpec spec(const std::string& name) {
-    ParamSpec s("compute", name, "radius of gyration of a group (lumped masses), MODELS.md (4.56)");
+    ParamSpec s("compute", name,
+                "radius of gyration of a group (lumped masses), docs/models.md §5.4 (4.56)");
     s.string("group", "node group").def(std::string("all"));
     s.real("inside", "only nodes closer than this to 'center' (default: all of the group)")
         .positive();

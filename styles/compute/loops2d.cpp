@@ -1,4 +1,4 @@
-// Loops of a 2D wire in a circular cavity (MODELS.md §2.7): a loop is an empty area
+// Loops of a 2D wire in a circular cavity (docs/models.md §2.7): a loop is an empty area
 // enclosed by one stretch of wire whose two ends touch, "an area enclosed by a wire
 // segment with only one inner contact". The wire is rastered with line width d (a
 // little wider, so that touching wires close the gap between them); the connected
@@ -23,7 +23,7 @@ class Loops2dCompute : public ComputeStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("compute", name,
                 "loops of a 2D wire in a circular cavity: enclosed empty regions bounded by one "
-                "contiguous stretch of wire closed by one contact neck (MODELS.md §2.7)");
+                "contiguous stretch of wire closed by one contact neck (docs/models.md §2.7)");
     s.real("radius", "cavity radius r").required().positive();
     s.vector("center", "cavity centre").def(std::vector<double>{0, 0}).length(2, 3);
     s.real("diameter", "wire diameter d (line width of the image)").def(1.0).positive();

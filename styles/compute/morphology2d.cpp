@@ -1,4 +1,4 @@
-// Morphology observables of a 2D wire in a circular cavity (MODELS.md §2.7):
+// Morphology observables of a 2D wire in a circular cavity (docs/models.md §2.7):
 // A and B, the total squared curvature sum kappa_i^2 l0 of the hinges in the inner
 // disc of radius r / sqrt(2) and in the outer ring (equal areas); classic when
 // A / B < 0.5 (curvature near the wall). Spiral indicator: the winding |sum zeta_i| /
@@ -19,7 +19,7 @@ class Morphology2dCompute : public ComputeStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("compute", name,
                 "2D crumpling morphology: A/B curvature criterion (classic vs plastic) and net "
-                "winding (spiral), MODELS.md §2.7");
+                "winding (spiral), docs/models.md §2.7");
     s.real("radius", "cavity radius r").required().positive();
     s.vector("center", "cavity centre").def(std::vector<double>{0, 0}).length(2, 3);
     s.add("chains", ParamType::StringList, "chains to analyse (default: all)")

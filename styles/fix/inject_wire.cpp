@@ -1,5 +1,5 @@
 // Wire injection into a circular (2D) or spherical (3D) cavity through straight
-// channels: along the x axis from one or both sides (MODELS.md §2.4), or through a
+// channels: along the x axis from one or both sides (docs/models.md §2.4), or through a
 // nozzle in the sphere (§5.3). Nodes in a channel (beyond r - d/2 from the centre
 // along the channel axis) are kinematic: their
 // degrees of freedom are clamped and they move inward at the feed speed. When the
@@ -25,7 +25,7 @@ class WireInjectionFix : public FixStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("fix", name,
                 "push a wire into a circular or spherical cavity through channels along x or "
-                "a nozzle; injection force, packing density, jamming stop (MODELS.md §2.4, "
+                "a nozzle; injection force, packing density, jamming stop (docs/models.md §2.4, "
                 "§5.3)");
     s.string("chain",
              "the injected wire: straight along the channel axis, its pushed ends in "
@@ -43,13 +43,13 @@ class WireInjectionFix : public FixStyle {
         .length(2, 3);
     s.real("speed",
            "feed speed v_in (length per time unit) of each channel; sim:modify can set 0 "
-           "to hold the wire (the force protocol of MODELS.md §2.4)")
+           "to hold the wire (the force protocol of docs/models.md §2.4)")
         .required()
         .nonnegative();
     s.string("rotation",
              "a rod with frames (rod/cosserat): free = spin about the axis free in the channel "
              "(low torsion), held = the channel edges' frames are prescribed (high torsion, "
-             "MODELS.md §4.5)")
+             "docs/models.md §4.5)")
         .def(std::string("free"))
         .choices({"free", "held"});
     s.real("diameter",
@@ -394,7 +394,7 @@ class WireInjectionFix : public FixStyle {
     for (int i : c->nodes)
       if (inside(x[i])) ++inside_;
     if (dim_ == 2) return d_ * length / (M_PI * r_ * r_);
-    // 3D (MODELS.md §5.4): phi = L pi a^2 / (4/3 pi R^3), a = d / 2
+    // 3D (docs/models.md §5.4): phi = L pi a^2 / (4/3 pi R^3), a = d / 2
     return length * 0.25 * d_ * d_ / (4.0 / 3.0 * r_ * r_ * r_);
   }
 

@@ -1,4 +1,4 @@
-// Viscous damping F = -gamma v on a group (MODELS.md §2.1, "small viscous damping").
+// Viscous damping F = -gamma v on a group (docs/models.md §2.1, "small viscous damping").
 #include "context.hpp"
 #include "registry.hpp"
 

@@ -1,4 +1,4 @@
-// Rigid spherical (3D) or circular (2D) wall: the contact law of MODELS.md §2.3
+// Rigid spherical (3D) or circular (2D) wall: the contact law of docs/models.md §2.3
 // (normal repulsion k delta^p, dashpot, stick-slip friction) against a fixed body.
 // Overlap delta = |x - c| + d/2 - R (inside) or R + d/2 - |x - c| (outside). The
 // friction history is a node property, allocated only when mu_static > 0.
@@ -17,12 +17,12 @@ class SphereWallFix : public FixStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("fix", name,
                 "rigid spherical (3D) / circular (2D) wall: penalty normal force, dashpot, "
-                "stick-slip friction (MODELS.md §2.3)");
+                "stick-slip friction (docs/models.md §2.3)");
     s.vector("center", "centre of the wall").def(std::vector<double>{0, 0, 0}).length(2, 3);
     s.real("radius", "wall radius R0").required().positive();
     s.real("shrink_rate",
-           "the radius shrinks as R(t) = R0 / (1 + rate t) (MODELS.md §7.2 S-6: the confinement "
-           "ratio then grows linearly in time)")
+           "the radius shrinks as R(t) = R0 / (1 + rate t) (docs/models.md §7.2 S-6: the "
+           "confinement ratio then grows linearly in time)")
         .def(0.0)
         .nonnegative();
     ContactLaw::declare(s);

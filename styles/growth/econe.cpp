@@ -1,4 +1,4 @@
-// E-cone growth (MODELS.md §6.9, (5.37)): circumferential growth about an axis,
+// E-cone growth (docs/models.md §6.9, (5.37)): circumferential growth about an axis,
 // G = e_r (x) e_r + g e_phi (x) e_phi + e_z (x) e_z with g = 1 + phi_e / (2 pi), so a
 // circle of radius r grows to the length (2 pi + phi_e) r. The excess angle phi_e is
 // ramped by the deck with sim:modify(id, {phi_e = ...}).
@@ -15,7 +15,7 @@ class EconeGrowth : public GrowthStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("growth", name,
                 "e-cone law: circumferential growth g = 1 + phi_e/(2 pi) about an axis "
-                "(MODELS.md §6.9, (5.37))");
+                "(docs/models.md §6.9, (5.37))");
     s.real("phi_e", "excess angle (radians); sim:modify can change it").def(0.0).min(-2 * M_PI);
     s.vector("center", "a point on the axis").def(std::vector<double>{0, 0, 0}).length(3, 3);
     s.vector("axis", "direction of the axis (the disc normal)")

@@ -1,4 +1,4 @@
-// Growth given by a deck function of the reference position and time (MODELS.md
+// Growth given by a deck function of the reference position and time (docs/models.md
 // §6.2): sim:growth("g", "function", {fn = function(x, y, z, t) return g end}). The
 // function returns a scalar (isotropic), four numbers (the in-plane tensor in world
 // x, y) or nine. With time_dependent = true it is called again whenever the scene

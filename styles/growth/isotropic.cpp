@@ -1,4 +1,4 @@
-// Uniform isotropic in-plane growth (MODELS.md §6.9, (5.41)): G = g (1 + rate t) 1,
+// Uniform isotropic in-plane growth (docs/models.md §6.9, (5.41)): G = g (1 + rate t) 1,
 // with g a constant factor (sim:modify can change it) and t the scene time.
 #include "context.hpp"
 #include "registry.hpp"
@@ -9,7 +9,8 @@ class IsotropicGrowth : public GrowthStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("growth", name,
-                "uniform isotropic in-plane growth G = factor (1 + rate t) (MODELS.md (5.41))");
+                "uniform isotropic in-plane growth G = factor (1 + rate t) (docs/models.md §6.9 "
+                "(5.41))");
     s.real("factor", "constant growth factor; sim:modify can change it").def(1.0).positive();
     s.real("rate", "growth rate lambda (per time unit)").def(0.0);
     return s;

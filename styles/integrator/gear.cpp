@@ -1,4 +1,4 @@
-// Gear predictor-corrector for second-order ODEs in Nordsieck form (MODELS.md §3.4):
+// Gear predictor-corrector for second-order ODEs in Nordsieck form (docs/models.md §3.4):
 // r_k = dt^k/k! x^(k), k < q. Predict with Pascal's triangle, evaluate forces at the
 // predicted position and velocity, correct every r_k with c_k times the
 // acceleration mismatch. q = 5 (2D rods) and q = 6 (3D rods); q = 4 also offered.
@@ -14,7 +14,8 @@ class GearIntegrator : public IntegratorStyle {
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("integrator", name,
-                "Gear predictor-corrector, Nordsieck form with q stored values (MODELS.md §3.4)");
+                "Gear predictor-corrector, Nordsieck form with q stored values (docs/models.md "
+                "§3.4)");
     s.integer("values", "stored values q: derivatives 0..q-1 (5: 2D wires, 6: 3D rods)")
         .def(5.0)
         .min(4)

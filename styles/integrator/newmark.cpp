@@ -1,11 +1,11 @@
-// Explicit Newmark (MODELS.md §6.5, (5.16)-(5.19)) with beta = 0:
+// Explicit Newmark (docs/models.md §6.5, (5.16)-(5.19)) with beta = 0:
 //   x+ = x + dt v + dt^2/2 a,   (1 + gamma dt c) a+ = f(x+)/m - c (v + (1 - gamma) dt a),
 //   v+ = v + dt ((1 - gamma) a + gamma a+),
 // with mass-proportional damping C = c M. gamma = 1 (the thesis) is first order and
 // damps high frequencies; gamma = 1/2 is central differences. Stable for
 // omega dt <= 1/sqrt(gamma/2).
 //
-// Adaptive step (our choice, MODELS.md §6.5 [C]): the Zienkiewicz–Xie local error
+// Adaptive step (our choice, docs/models.md §6.5 [C]): the Zienkiewicz–Xie local error
 // of Newmark, e = dt^2 (1/6 - beta) (a+ - a), measured as eta = max_I |e_I| / l_min
 // (l_min: the shortest edge of the scene). A step with eta > tol is rejected and
 // retried with dt/2; otherwise the next dt is dt * min(1.2, max(0.5, 0.9 (tol/eta)^(1/3))),
@@ -25,7 +25,7 @@ class NewmarkIntegrator : public IntegratorStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("integrator", name,
                 "explicit Newmark (beta = 0) with mass-proportional damping and an optional "
-                "adaptive step (MODELS.md §6.5)");
+                "adaptive step (docs/models.md §6.5)");
     declare_time_step(s,
                       "time step (the first one when adaptive), or \"auto\" = safety * "
                       "sqrt(2/gamma) / omega_max");

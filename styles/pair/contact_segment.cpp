@@ -1,4 +1,4 @@
-// Segment-segment contact of 3D rods (MODELS.md §5.1). Broad phase: the shared
+// Segment-segment contact of 3D rods (docs/models.md §5.1). Broad phase: the shared
 // linked cells over edge midpoints and a pair list of edge pairs closer than
 // 2a + skin, rebuilt when a node moved more than skin/2 (or every N steps).
 // Dense phase: the closest points S1, S2 of the two segments (clamped, with a
@@ -24,7 +24,7 @@ class SegmentContactPair : public PairStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("pair", name,
                 "3D segment-segment contact of rods: Hertz-cylinder repulsion, dashpot, stick-slip "
-                "Coulomb friction (MODELS.md §5.1)");
+                "Coulomb friction (docs/models.md §5.1)");
     s.real("radius", "rod radius a: contact when two segments are closer than 2a")
         .def(1.0)
         .positive();

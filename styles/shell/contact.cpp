@@ -1,11 +1,12 @@
-// Self-contact of a shell surface (MODELS.md §6.10, (5.36)), frictionless unless
+// Self-contact of a shell surface (docs/models.md §6.10, (5.36)), frictionless unless
 // mu_static > 0 (then stick-slip friction per triangle pair, §2.3).
 //
 // Broad phase: triangle AABBs (current control mesh, inflated by (h + skin)/2) in
 // cubic voxels of edge max(largest AABB, h), so a box spans at most 2 voxels per
-// axis (MODELS.md suggests twice that; smaller voxels hold fewer pairs); a pair list rebuilt every
-// `rebuild_every` steps or as soon as a node has moved skin/2 since the last build, as the
-// scene's neighbour service decides for every list at once (src/neighbors.hpp).
+// axis (docs/models.md §6.10 planned twice that; smaller voxels hold fewer pairs); a pair
+// list rebuilt every `rebuild_every` steps or as soon as a node has moved skin/2 since the
+// last build, as the scene's neighbour service decides for every list at once
+// (src/neighbors.hpp).
 // Topology check: the smallest reference distance d_ref between the vertices of the
 // two triangles; pairs with d_ref = 0 (neighbours) never collide, pairs with
 // d_ref <= h (near neighbours) only while their current normals oppose (n1.n2 < 0,
@@ -32,7 +33,8 @@ class ShellContactPair : public PairStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("pair", name,
                 "self-contact of a shell surface: voxel broad phase, reference-distance topology "
-                "check, faceted dense phase, repulsion k (h-r)^2/r^2 (MODELS.md §6.10, (5.36))");
+                "check, faceted dense phase, repulsion k (h-r)^2/r^2 (docs/models.md §6.10, "
+                "(5.36))");
     s.string("mesh", "surface created by sim:mesh").required();
     s.real("thickness", "contact distance h (the shell thickness)").required().positive();
     s.real("k", "contact stiffness k_ct (default Y h mean_edge)").positive();
@@ -40,18 +42,18 @@ class ShellContactPair : public PairStyle {
     s.real("skin", "extra reach of the pair list (default h)").positive();
     s.real("near_distance",
            "pairs whose smallest reference vertex distance is at most this are near "
-           "neighbours and touch only across a ridge (MODELS.md §6.10: h; a few h keeps the "
+           "neighbours and touch only across a ridge (docs/models.md §6.10: h; a few h keeps the "
            "tightly curved core of a thick e-cone from touching itself)")
         .positive();
     s.string("near_contact",
-             "ridge: near neighbours touch only while their normals oppose (MODELS.md §6.10); "
+             "ridge: near neighbours touch only while their normals oppose (docs/models.md §6.10); "
              "never: they never touch (no force that switches on with the sign of n1.n2)")
         .def(std::string("ridge"))
         .choices({"ridge", "never"});
     s.string("dense",
-             "closest: one force per triangle pair along its closest points (MODELS.md §6.10); "
-             "all: one per vertex-triangle and edge-edge feature pair within h, a smoother sum "
-             "that lets relaxations converge when faceted contacts slide")
+             "closest: one force per triangle pair along its closest points (docs/models.md "
+             "§6.10); all: one per vertex-triangle and edge-edge feature pair within h, a "
+             "smoother sum that lets relaxations converge when faceted contacts slide")
         .def(std::string("closest"))
         .choices({"closest", "all"});
     s.real("far_distance",
@@ -63,8 +65,8 @@ class ShellContactPair : public PairStyle {
         .def(20.0)
         .min(1);
     s.real("mu_static",
-           "static friction between contacting areas (MODELS.md §6.10: the stabilised symmetric "
-           "e-cone, S-2), stick-slip as in §2.3; sim:modify can change it (0: release)")
+           "static friction between contacting areas (docs/models.md §6.10: the stabilised "
+           "symmetric e-cone, S-2), stick-slip as in §2.3; sim:modify can change it (0: release)")
         .def(0.0)
         .nonnegative();
     s.real("mu_dynamic", "dynamic friction coefficient (default 0.9 mu_static)").nonnegative();
@@ -329,7 +331,7 @@ class ShellContactPair : public PairStyle {
     return key == "contact" ? &face_flag_ : nullptr;
   }
 
-  // Angle between the two contact planes (MODELS.md §6.11): the contact points are
+  // Angle between the two contact planes (docs/models.md §6.11): the contact points are
   // split into two zones (2-means), the forces of each zone averaged with one
   // orientation; gamma = acos |n1 . n2|. -1 when there are not two zones.
   double contact_plane_angle() const {

@@ -1,4 +1,4 @@
-// Core radius R_C of an e-cone (MODELS.md §6.11, [C]), from the per-face densities of
+// Core radius R_C of an e-cone (docs/models.md §6.11, [C]), from the per-face densities of
 // the shell against the reference radius r round the apex, by one of three criteria:
 // - "energy" (default): outside the core the cone is developable, U_b ~ 1/r^2, and the
 //   bending energy inside r grows as A ln(r / R_C); a least-squares fit of the

@@ -1,5 +1,5 @@
 // Nonlinear Koiter (Kirchhoff–Love) shell on a Loop subdivision surface with
-// in-plane growth (MODELS.md §6.1–§6.8).
+// in-plane growth (docs/models.md §6.1–§6.8).
 //
 // Energy (§6.3): Phi = sum_p w_p sqrt(abar) 1/2 [C_m alpha^T H alpha + C_b beta^T H beta],
 // alpha = 1/2 (P^T a P - abar), beta = kbar - P^T kappa P, P = Gtilde^-1 (§6.2).
@@ -43,7 +43,7 @@ class KoiterShell : public ShellStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("shell", name,
                 "nonlinear Koiter shell on a Loop subdivision surface with in-plane growth "
-                "(MODELS.md §6)");
+                "(docs/models.md §6)");
     s.string("mesh", "surface created by sim:mesh").required();
     s.real("thickness", "shell thickness h").required().positive();
     s.real("young", "Young's modulus Y").def(1e4).positive();
@@ -58,7 +58,7 @@ class KoiterShell : public ShellStyle {
     s.string("ghost_partner",
              "simply supported edges: the interior node p whose displacement a ghost negates "
              "(u_g = -u_p): reflection = the node nearest to the ghost's mirror image across "
-             "the edge (2nd order); point = the triangle's third node as printed in MODELS.md "
+             "the edge (2nd order); point = the triangle's third node as printed in docs/models.md "
              "§6.7 (1st order). Clamped edges always fix boundary, ghosts and first row (§6.7)")
         .def(std::string("reflection"))
         .choices({"reflection", "point"});

@@ -1,4 +1,4 @@
-// The limit-surface position (Loop's limit mask, MODELS.md §6.6) of the control
+// The limit-surface position (Loop's limit mask, docs/models.md §6.6) of the control
 // node nearest to a reference point, and its displacement: the deflection a plate
 // or shell test compares with theory (a control node itself is not on the surface).
 #include <limits>

@@ -1,4 +1,4 @@
-// Number of wings of a grown disc (MODELS.md §6.11): the height of the rim
+// Number of wings of a grown disc (docs/models.md §6.11): the height of the rim
 // z(phi) - mean, resampled at `samples` equally spaced angles by linear
 // interpolation, transformed with FFTW (real to complex); n is the mode >= 2 with
 // the largest amplitude (n = 1 is a rigid tilt of a free disc).

@@ -1,4 +1,4 @@
--- Growth from a deck function (MODELS.md §7.3): a free rectangle with uniaxial growth
+-- Growth from a deck function (docs/models.md §7.3): a free rectangle with uniaxial growth
 -- G = diag(1.2, 1) relaxes to the stretched rectangle, stress-free and flat; the same
 -- function written as a scalar reproduces the isotropic growth style.
 local slender = require("slender")

@@ -75,7 +75,7 @@ def main():
     assert c({"winding": 2.5, "loops": 5, "ab_ratio": 0.3}) == "classic"
     assert c({"winding": 0.3, "loops": 0, "ab_ratio": 0.3}) == "classic"
     assert c({"winding": 0.3, "loops": 4, "ab_ratio": 0.9}) == "plastic"
-    # the spiral model's core radius: R_c(0) ~ R, R_c(1) = d (MODELS.md §2.8)
+    # the spiral model's core radius: R_c(0) ~ R, R_c(1) = d (docs/models.md §2.8)
     rc = lambda p: 0.5 * (1 + np.sqrt(1 + 4 * 50.0 ** 2 * (1 - p)))
     assert abs(rc(1.0) - 1.0) < 1e-12 and abs(rc(0.0) - 50.0) < 1
     sweep_resumes_interrupted_runs()

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """scripts/first_buckle.py on the real engine: in a small cavity (f = 12) a slow feed is
-quasi-static and the span buckles as one arch, as MODELS.md §7.2 expects; the classic
+quasi-static and the span buckles as one arch, as docs/models.md §7.2 expects; the classic
 deck's feed at f = 100 is not, and the wire buckles next to the channels."""
 import csv
 import os

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks the inverse-spool (Purohit) model of scripts/pack3d_stats.py against the
-constants of MODELS.md §5.4 / §7.1 (A-4) and its limits, and the log-normal fit."""
+constants of docs/models.md §5.4 / §7.1 (A-4) and its limits, and the log-normal fit."""
 import math
 import os
 import sys

@@ -1,4 +1,4 @@
-// Unit tests of bend2d/hysteresis (MODELS.md §2.2): one hinge driven through
+// Unit tests of bend2d/hysteresis (docs/models.md §2.2): one hinge driven through
 // Covers styles/bond/bend_hysteresis.cpp.
 // curvature histories, and the elastic limit against bend2d.
 #include <cmath>
@@ -75,7 +75,7 @@ TEST(BendHysteresisBond, UnloadingIsElasticAndLeavesTheResidualCurvature) {
   for (double k = 0.0999; k > 0.08; k -= 1e-4) h.moment(k);
   const double m1 = h.moment(0.0701), m2 = h.moment(0.0700);
   EXPECT_NEAR((m1 - m2) / 1e-4, 60.0, 1e-6);
-  // residual curvature at M = 0: kappa_pl (1 - K_h/K_e) (MODELS.md §2.2)
+  // residual curvature at M = 0: kappa_pl (1 - K_h/K_e) (docs/models.md §2.2)
   const double res = kpl * (1 - 0.05);
   for (double k = 0.0700; k > res; k -= 1e-4) h.moment(k);
   EXPECT_NEAR(h.moment(res), 0.0, 1e-12);

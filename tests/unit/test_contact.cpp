@@ -1,6 +1,6 @@
 // Unit tests of the shared contact law through contact/node-edge and wall/circle
 // Covers styles/pair/contact_node_edge.cpp, src/contact_law.hpp and the friction of
-// styles/fix/wall_sphere.cpp. (MODELS.md §2.3).
+// styles/fix/wall_sphere.cpp. (docs/models.md §2.3).
 #include <cmath>
 
 #include "contact_law.hpp"

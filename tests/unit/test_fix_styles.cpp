@@ -36,7 +36,7 @@ TEST(SphereWallFix, QuadraticLawValueAndOutsideSide) {
   sim.add_fix("cavity", "wall/circle",
               P({{"radius", 10.0}, {"stiffness", 1e4}, {"exponent", 2.0}, {"diameter", 1.0}}));
   sim.compute_forces();
-  // overlap = 10.2 + 0.5 - 10 = 0.7 -> F = k 0.49 along -x (MODELS.md §2.3)
+  // overlap = 10.2 + 0.5 - 10 = 0.7 -> F = k 0.49 along -x (docs/models.md §2.3)
   EXPECT_NEAR(sim.nodes().f[0].x(), -1e4 * 0.49, 1e-8);
   Simulation out(2, 1);
   out.add_chain("w", {Vec3(1.2, 0, 0), Vec3(5, 0, 0)}, 1.0, false);

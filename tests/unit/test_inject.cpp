@@ -172,7 +172,7 @@ TEST(SphereWallFix, OpeningsLetTheWirePass) {
 }
 
 TEST(WireInjectionFix, ModifiedSpeedHoldsAndResumesTheFeed) {
-  // the force protocol of MODELS.md §2.4: stop the feed, relax, then go on
+  // the force protocol of docs/models.md §2.4: stop the feed, relax, then go on
   auto sim = feed_scene("left", 0.5, 0.1);
   sim->run(RunOptions{10000, 0, {}});
   const double fed = sim->fix("feed").value("injected");
@@ -194,7 +194,7 @@ TEST(WireInjectionFix, ModifiedSpeedHoldsAndResumesTheFeed) {
 }
 
 TEST(WireInjectionFix, NozzleFeedsA3dWireAlongItsAxis) {
-  // a 3D wire fed through a nozzle at (0, 0, R) pointing down (MODELS.md §5.3)
+  // a 3D wire fed through a nozzle at (0, 0, R) pointing down (docs/models.md §5.3)
   auto sim = std::make_unique<Simulation>(3, 1);
   sim->verbose = false;
   const double R = 6.0, v = 0.2;
@@ -269,7 +269,7 @@ TEST(WireInjectionFix, NozzleHoldsTheFramesOfACosseratRodOnlyWhenAsked) {
     EXPECT_GT(sim.nodes().x[outer].z(), R);
     EXPECT_EQ(fixed[outer], std::string(rotation) == "held" ? 1 : 0) << rotation;
     EXPECT_LT((qrod::d3(q[outer]) - Vec3(0, 0, -1)).norm(), 2e-2)
-        << rotation;  // MODELS.md: |t - d3| < 1e-2
+        << rotation;  // docs/models.md §4.3: |t - d3| < 1e-2
     // edges inside the sphere are free in both setups
     EXPECT_EQ(fixed[c.nodes[c.n_nodes() - 2]], 0);
   }

@@ -1,4 +1,4 @@
-// Loop subdivision surfaces (MODELS.md §6.6): the box-spline identities, the
+// Loop subdivision surfaces (docs/models.md §6.6): the box-spline identities, the
 // irregular-element evaluation by local subdivision, limit masks, planarity and the
 // continuity of position and normal across element edges; meshes and ghosts (§6.7).
 #ifdef SLENDER_HAVE_SHELL

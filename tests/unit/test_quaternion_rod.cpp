@@ -1,5 +1,5 @@
 // Unit tests of the quaternion Cosserat rod kinematics and energies
-// (src/quaternion_rod.hpp, MODELS.md §4): directors, the B_j matrices in the
+// (src/quaternion_rod.hpp, docs/models.md §4): directors, the B_j matrices in the
 // scalar-first ordering, the discrete Darboux vector, and finite-difference checks
 // of every generalised force against its energy.
 #include <random>
@@ -42,7 +42,7 @@ TEST(QuaternionRod, DirectorsAreTheColumnsOfTheRotationMatrix) {
 }
 
 TEST(QuaternionRod, BMatricesGiveTheMaterialDarbouxVector) {
-  // (B_j q) . p = vec(conj(q) o p)_j in the scalar-first ordering (MODELS.md §4.2)
+  // (B_j q) . p = vec(conj(q) o p)_j in the scalar-first ordering (docs/models.md §4.2)
   for (int k = 0; k < 20; ++k) {
     const Quat q = random_quat(false), p = random_quat(false);
     const Quat r = mul(conj(q), p);
@@ -50,7 +50,7 @@ TEST(QuaternionRod, BMatricesGiveTheMaterialDarbouxVector) {
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(B(j, q).dot(q), 0.0, 1e-12);  // skew
   }
   // a turn by theta about the material axis n between neighbours:
-  // kappa = (2 / l) sin(theta / 2) n (MODELS.md §4.3)
+  // kappa = (2 / l) sin(theta / 2) n (docs/models.md §4.3)
   const Quat qa = random_quat();
   const Vec3 n = Vec3(0.3, -0.5, 0.8).normalized();
   const double theta = 0.7, l = 0.9;

@@ -1,4 +1,4 @@
-// Unit tests of bond rod/cosserat (quaternion Cosserat rod, MODELS.md §4) and of
+// Unit tests of bond rod/cosserat (quaternion Cosserat rod, docs/models.md §4) and of
 // the integration of its quaternions (generalised coordinates) by verlet and gear.
 // Covers styles/bond/rod_cosserat.cpp.
 #include <random>
@@ -89,7 +89,7 @@ TEST(CosseratRodBond, StraightRodAtRestAndTwistActsOnFramesOnly) {
     q[i] = qrod::mul(q[i], Vec4(std::cos(0.5 * step * i), 0, 0, std::sin(0.5 * step * i)));
   sim.compute_forces();
   const double l = std::sqrt(0.81 + 0.04 + 0.01);
-  const double k3 = 2.0 / l * std::sin(0.5 * step);  // MODELS.md §4.3
+  const double k3 = 2.0 / l * std::sin(0.5 * step);  // docs/models.md §4.3
   EXPECT_NEAR(sim.energies().at("twist"), 6 * 0.5 * l * 1.5 * k3 * k3, 1e-12);
   EXPECT_NEAR(sim.energies().at("bend"), 0.0, 1e-20);
   for (auto& f : sim.nodes().f) EXPECT_LT(f.norm(), 1e-10);

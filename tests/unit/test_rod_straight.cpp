@@ -1,5 +1,5 @@
 // Unit tests of bond rod/straight (discrete elastic rod without directors,
-// MODELS.md §3): forces against the energy, invariances, exact values.
+// docs/models.md §3): forces against the energy, invariances, exact values.
 // Covers styles/bond/rod_straight.cpp and styles/compute/gyration.cpp.
 #include <Eigen/Geometry>
 #include <cmath>
@@ -77,7 +77,7 @@ TEST(StraightRodBond, EnergyIsInvariantUnderRigidMotionsAndMomentumIsConserved) 
 }
 
 TEST(StraightRodBond, OneHingeStoresTheDiscreteBendingEnergy) {
-  // turning angle phi: |kb| = 2 tan(phi/2) (MODELS.md (4.2)), E = YI |kb|^2 / (2 l0)
+  // turning angle phi: |kb| = 2 tan(phi/2) (docs/models.md §3.1 (4.2)), E = YI |kb|^2 / (2 l0)
   for (double phi : {0.1, 1.0, 2.5}) {
     const double l0 = 1.0, YI = 2.0;
     std::vector<Vec3> pts{Vec3(-l0, 0, 0), Vec3(0, 0, 0),
@@ -145,8 +145,8 @@ TEST(GyrationCompute, RingAndFilledSphereValues) {
   ring.add_chain("r", pts, 1.0, true);
   ring.add_compute("g", "gyration", P({}));
   EXPECT_NEAR(ring.column("g.rg"), 3.0, 1e-12);
-  // points filling a ball of radius 5 uniformly: R_g^2 = 3/5 R^2 (MODELS.md (4.60) limit);
-  // those outside 'inside' are left out
+  // points filling a ball of radius 5 uniformly: R_g^2 = 3/5 R^2 (docs/models.md §5.4, the
+  // limit of (4.60)); those outside 'inside' are left out
   Simulation ball(3, 1);
   std::vector<Vec3> b;
   for (double x = -7; x <= 7; x += 0.35)

@@ -1,4 +1,4 @@
-// Unit tests of pair contact/segment (3D rods, MODELS.md §5.1) and of the
+// Unit tests of pair contact/segment (3D rods, docs/models.md §5.1) and of the
 // segment closest-point routine it uses.
 // Covers styles/pair/contact_segment.cpp.
 #include <random>

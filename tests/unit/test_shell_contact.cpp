@@ -1,4 +1,4 @@
-// Shell self-contact (MODELS.md §6.10): closest points of triangles, forces as the
+// Shell self-contact (docs/models.md §6.10): closest points of triangles, forces as the
 // gradient of the contact energy, two shells pressed together never interpenetrate,
 // a flat shell is not repelled by its own neighbours, a folded shell is.
 #ifdef SLENDER_HAVE_SHELL

@@ -1,8 +1,8 @@
-// The Koiter shell style (MODELS.md §6.1-§6.5, §7.3): forces are the exact
+// The Koiter shell style (docs/models.md §6.1-§6.5, §7.3): forces are the exact
 // gradient of the energy (with growth and every ghost rule), rigid motions cost
 // nothing, isotropic growth of a flat disc is stress-free, a uniformly loaded
 // plate matches Kirchhoff plate theory, cylindrical bending matches E = D k^2 A / 2,
-// and the Newmark integrator has the stability and damping MODELS.md states.
+// and the Newmark integrator has the stability and damping docs/models.md §6.5 states.
 #ifdef SLENDER_HAVE_SHELL
 #include <Eigen/Geometry>
 #include <chrono>
@@ -257,7 +257,7 @@ TEST(KoiterShell, SimplySupportedPlateUnderUniformLoad) {
   const double e8 = plate_error(8, &t8), e16 = plate_error(16, &t16);
   std::printf("plate: error %.3e (8x8, %.2f s), %.3e (16x16, %.2f s)\n", e8, t8, e16, t16);
   // second order with ghosts that negate their mirror-image partner (ghost_partner =
-  // reflection); the point rule printed in MODELS.md §6.7 is first order (tested too)
+  // reflection); the point rule printed in docs/models.md §6.7 is first order (tested too)
   EXPECT_LT(e16, 0.003);
   EXPECT_LT(e16, 0.35 * e8);
   const double p8 = plate_error(8, &t8, "point"), p16 = plate_error(16, &t16, "point");

@@ -1,4 +1,4 @@
--- The 2D crumpling scene of MODELS.md §2 (thesis ch. 3): an elasto-plastic wire
+-- The 2D crumpling scene of docs/models.md §2 (thesis ch. 3): an elasto-plastic wire
 -- pushed from two opposite channels into a circular cavity until it jams.
 -- Shared by classic.lua, spiral.lua and plastic.lua, which set the parameters.
 --
@@ -58,7 +58,7 @@ function M.build(p)
   -- jamming density by 0.006-0.02 at f = 10-50)
   sim:fix("feed", "inject/wire", { chain = "wire", radius = r, speed = s, diameter = d,
     jam_force = slender.var("jam_force", 0.1 * k1 * d),
-    -- averaged over 1000 steps of the reference dt 0.01 sqrt(m / k1) (MODELS.md §2.4), as a
+    -- averaged over 1000 steps of the reference dt 0.01 sqrt(m / k1) (docs/models.md §2.4), as a
     -- time: a step count would average over 10x more wire at 10x the step
     jam_time = slender.var("jam_time", 10 * math.sqrt(m / k1)), max_phi = max_phi })
   -- Velocity Verlet at 0.7 of its stable step ("auto" with safety 0.7, 38x the Gear q = 5

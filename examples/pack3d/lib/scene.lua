@@ -1,4 +1,4 @@
--- The 3D packing scene of MODELS.md §5 (thesis ch. 4): a rod fed through a nozzle
+-- The 3D packing scene of docs/models.md §5 (thesis ch. 4): a rod fed through a nozzle
 -- at (0, 0, R) into a rigid sphere of radius R until the injection force passes a
 -- threshold. Shared by the decks in this folder, which pick the rod model.
 --
@@ -97,7 +97,7 @@ function M.build(p)
   local columns = { "step", "time", "feed.phi", "feed.force_avg", "contact/segment.contacts",
                     "sphere.contacts", "energy.bend", "energy.stretch", "energy.contact", "energy.twist",
                     "gyr.rg", "ke", "count.nodes" }
-  -- rods with frames: the largest |t - d3| of the step (MODELS.md §4.3 wants < 1e-2),
+  -- rods with frames: the largest |t - d3| of the step (docs/models.md §4.3 wants < 1e-2),
   -- so the coupling constant can be judged over the whole run, not only at its end
   if pcall(sim.value, sim, "rod/cosserat.misalignment") then
     columns[#columns + 1] = "rod/cosserat.misalignment"
@@ -149,7 +149,7 @@ function M.run(p)
     contacts = sim:value("contact/segment.contacts"), nodes = sim:nnodes(), steps = sim:step(),
     wall_s = wall, node_steps_per_s = node_steps / math.max(wall, 1e-9),
     ke_per_node = sim:value("ke") / sim:nnodes(),
-    -- rods with frames: the largest |t - d3| (MODELS.md §4.3 wants < 1e-2)
+    -- rods with frames: the largest |t - d3| (docs/models.md §4.3 wants < 1e-2)
     misalignment = (pcall(sim.value, sim, "rod/cosserat.misalignment")) and
                    sim:value("rod/cosserat.misalignment") or 0 }
   return sim

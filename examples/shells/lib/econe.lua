@@ -1,5 +1,5 @@
 -- The e-cone scene shared by econe.lua (S-1, S-4, S-5) and econe_stability.lua (S-2):
--- a free disc (or ring) growing circumferentially (MODELS.md §6.8), Koiter shell with
+-- a free disc (or ring) growing circumferentially (docs/models.md §6.9), Koiter shell with
 -- mirror ghosts, faceted self-contact, rim-mode analysis, L-BFGS (or FIRE) relaxations, a CSV log.
 local slender = require("slender")
 local M = {}
@@ -24,7 +24,7 @@ function M.build(opts)
   local sim = slender.simulation{dimension = 3, seed = slender.var("seed", 1)}
   s.sim = sim
   s.inner = slender.var("inner", 0)
-  local noise = slender.var("noise", 1e-4)  -- out-of-plane noise amplitude (MODELS.md §6.12)
+  local noise = slender.var("noise", 1e-4)  -- out-of-plane noise amplitude (docs/models.md §6.12)
   if s.inner > 0 then
     s.nodes, s.tris = sim:mesh{name = "disc", shape = "ring", radius = 1, inner_radius = s.inner,
                                edge = s.edge, noise = noise}
@@ -46,7 +46,7 @@ function M.build(opts)
   sim:shell("koiter", {mesh = "disc", thickness = s.h, young = s.young, poisson = s.poisson,
                        growth = "g", boundary = slender.var("boundary", "mirror")})
   -- near neighbours within 4 h in the reference never touch (-v near_contact=ridge: only across
-  -- a ridge, MODELS.md §6.10): the core of a thick cone is tighter than h, its faceted layers
+  -- a ridge, docs/models.md §6.10): the core of a thick cone is tighter than h, its faceted layers
   -- come within h of each other across the tip, and a force that switches on with the sign
   -- of n1.n2 stalled FIRE there (h = 0.04, edge 1/16: |f| stuck at 0.14 at phi_e = 6.2 and
   -- E_s doubled; without it the same state relaxes in 4 600 steps). The kissing
@@ -70,7 +70,7 @@ function M.build(opts)
     return key == "gamma" and -1 or 0
   end
   sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + s.inner)})
-  -- core radius R_C (MODELS.md §6.11 [C]): the bending energy inside r grows as A ln(r / R_C)
+  -- core radius R_C (docs/models.md §6.11 [C]): the bending energy inside r grows as A ln(r / R_C)
   -- on the developable range 0.3 <= r <= 0.6 (R_C), and where the ring-averaged U_s falls
   -- below 10 % of its peak (R_C_s; shrinks with every refinement of the apex); rings: -1
   if s.inner == 0 then

@@ -195,6 +195,21 @@ void attr_ints(hid_t obj, const std::string& name, const std::vector<int>& value
                      H5Aclose, "attribute " + name);
   check(H5Awrite(a, H5T_NATIVE_INT, values.data()), "write attribute " + name);
 }
+void attr_int(hid_t obj, const std::string& name, int value) {
+  Handle space = checked(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+  Handle a = checked(H5Acreate2(obj, name.c_str(), H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT),
+                     H5Aclose, "attribute " + name);
+  check(H5Awrite(a, H5T_NATIVE_INT, &value), "write attribute " + name);
+}
+void attr_reference(hid_t obj, const std::string& name, hid_t file, const std::string& path) {
+  hobj_ref_t ref;
+  check(H5Rcreate(&ref, file, path.c_str(), H5R_OBJECT, -1), "reference to " + path);
+  Handle space = checked(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+  Handle a =
+      checked(H5Acreate2(obj, name.c_str(), H5T_STD_REF_OBJ, space, H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose, "attribute " + name);
+  check(H5Awrite(a, H5T_STD_REF_OBJ, &ref), "write attribute " + name);
+}
 std::string read_attr_string(hid_t obj, const std::string& name) {
   Handle a = checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "attribute " + name);
   Handle type = checked(H5Aget_type(a), H5Tclose, "attribute type");
@@ -204,6 +219,19 @@ std::string read_attr_string(hid_t obj, const std::string& name) {
   while (!s.empty() && s.back() == '\0') s.pop_back();
   return s;
 }
+
+namespace {
+// Writes entry t of an extendable rank-1 dataset (the step, time or scalar value of frame t).
+void write_frame(hsize_t t, const Handle& ds, hid_t memtype, const void* v) {
+  hsize_t size = t + 1;
+  check(H5Dset_extent(ds, &size), "extend");
+  Handle fs = checked(H5Dget_space(ds), H5Sclose, "space");
+  hsize_t start = t, count = 1;
+  H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+  Handle ms = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, "space");
+  check(H5Dwrite(ds, memtype, ms, fs, H5P_DEFAULT, v), "write frame");
+}
+}  // namespace
 
 TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool integer)
     : ncomp_(ncomp), integer_(integer) {
@@ -215,6 +243,10 @@ TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool in
     Handle space = checked(H5Screate_simple(rank, zero.data(), maxd.data()), H5Sclose, "space");
     Handle plist = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "plist");
     H5Pset_chunk(plist, rank, chunk);
+    if (rank == 3 && integer) {
+      const long long fill = -1;
+      H5Pset_fill_value(plist, H5T_NATIVE_LLONG, &fill);
+    }
     return checked(H5Dcreate2(group_, nm, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
                    std::string("dataset ") + nm);
   };
@@ -228,18 +260,9 @@ TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool in
 long TimeSeries::append(long step, double time, const double* data, size_t n) {
   const hsize_t t = static_cast<hsize_t>(frames_);
   nmax_ = std::max<hsize_t>(nmax_, n);
-  auto write1 = [&](const Handle& ds, hid_t memtype, const void* v) {
-    hsize_t size = t + 1;
-    check(H5Dset_extent(ds, &size), "extend");
-    Handle fs = checked(H5Dget_space(ds), H5Sclose, "space");
-    hsize_t start = t, count = 1;
-    H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
-    Handle ms = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, "space");
-    check(H5Dwrite(ds, memtype, ms, fs, H5P_DEFAULT, v), "write frame");
-  };
   long long s = step;
-  write1(step_, H5T_NATIVE_LLONG, &s);
-  write1(time_, H5T_NATIVE_DOUBLE, &time);
+  write_frame(t, step_, H5T_NATIVE_LLONG, &s);
+  write_frame(t, time_, H5T_NATIVE_DOUBLE, &time);
   hsize_t size[3] = {t + 1, nmax_, static_cast<hsize_t>(ncomp_)};
   check(H5Dset_extent(value_, size), "extend value");
   Handle fs = checked(H5Dget_space(value_), H5Sclose, "space");
@@ -254,6 +277,30 @@ long TimeSeries::append(long step, double time, const double* data, size_t n) {
     check(H5Dwrite(value_, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, data), "write value");
   }
   return frames_++;
+}
+
+ScalarSeries::ScalarSeries(hid_t parent, const std::string& name) {
+  group_ = create_group(parent, name);
+  auto make = [&](const char* nm, hid_t type) {
+    hsize_t zero = 0, maxd = H5S_UNLIMITED, chunk = 64;
+    Handle space = checked(H5Screate_simple(1, &zero, &maxd), H5Sclose, "space");
+    Handle plist = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "plist");
+    H5Pset_chunk(plist, 1, &chunk);
+    return checked(H5Dcreate2(group_, nm, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
+                   std::string("dataset ") + nm);
+  };
+  step_ = make("step", H5T_STD_I64LE);
+  time_ = make("time", H5T_IEEE_F64LE);
+  value_ = make("value", H5T_STD_I64LE);
+}
+
+void ScalarSeries::append(long step, double time, double value) {
+  const hsize_t t = static_cast<hsize_t>(frames_);
+  const long long s = step, v = static_cast<long long>(value);
+  write_frame(t, step_, H5T_NATIVE_LLONG, &s);
+  write_frame(t, time_, H5T_NATIVE_DOUBLE, &time);
+  write_frame(t, value_, H5T_NATIVE_LLONG, &v);
+  ++frames_;
 }
 
 std::string xdmf_slab(const std::string& file, const std::string& path, long t, size_t n, int nc,

@@ -63,12 +63,18 @@ std::string read_string(hid_t parent, const std::string& name);
 void attr_string(hid_t obj, const std::string& name, const std::string& value);
 void attr_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values);
 void attr_ints(hid_t obj, const std::string& name, const std::vector<int>& values);
+// An integer attribute of scalar dataspace (H5MD's box/dimension).
+void attr_int(hid_t obj, const std::string& name, int value);
+// An attribute holding an HDF5 object reference to `path` of `file` (H5MD's particles_group).
+void attr_reference(hid_t obj, const std::string& name, hid_t file, const std::string& path);
 std::string read_attr_string(hid_t obj, const std::string& name);
 
 // A time series following H5MD: <group>/step, <group>/time, <group>/value with
 // value extendable in frames and in the particle dimension.
 class TimeSeries {
  public:
+  // An integer series has the fill value -1: the rows past a frame's own count (and of
+  // frames written before the count grew) read -1, H5MD's mark of "no particle / no tuple".
   TimeSeries(hid_t parent, const std::string& name, int ncomp, bool integer);
   // Appends one frame of n rows (ncomp values each); returns the frame index.
   long append(long step, double time, const double* data, size_t n);
@@ -81,6 +87,18 @@ class TimeSeries {
   bool integer_;
   long frames_ = 0;
   hsize_t nmax_ = 0;
+};
+
+// A scalar observable following H5MD: <group>/step, <group>/time, <group>/value[frames]
+// (integer values).
+class ScalarSeries {
+ public:
+  ScalarSeries(hid_t parent, const std::string& name);
+  void append(long step, double time, double value);
+
+ private:
+  Handle group_, step_, time_, value_;
+  long frames_ = 0;
 };
 
 // XDMF DataItem selecting frame t (n rows of nc values) of an extendable

@@ -3,7 +3,9 @@
 Trajectories (dump "h5md", styles/dump/h5md.cpp): /particles/all/<field>/{step,time,value}
 with value [frames, max nodes, components], and /connectivity/edges/value [frames, max
 edges, 2], each chain's edges in chain order. Rows past a frame's own count are padding
-(an edge from a node to itself). Nodes are stored in the order they were created, so a
+(-1, the datasets' fill value; files written before 0.2 pad with an edge from a node to
+itself). /particles/all/id holds the node index (-1 past the frame's count) and
+/observables/nodes the count per frame. Nodes are stored in the order they were created, so a
 chain that grew by injection is not contiguous: the edges give the chain order, and
 Trajectory returns every frame as ordered chains. A chain without edges (one node) does
 not appear.
@@ -110,9 +112,9 @@ class Trajectory(_Series):
         n = min(f[POSITION + "/step"].shape[0], f[EDGES + "/value"].shape[0])
         self.steps = np.asarray(f[POSITION + "/step"][:n], dtype=np.int64)
         self.times = np.asarray(f[POSITION + "/time"][:n], dtype=float)
-        self.dimension = int(np.ravel(f["particles/all/box"].attrs["dimension"])[0])
+        self.dimension = int(np.ravel(f["particles/all/box"].attrs["dimension"])[0])  # scalar since 0.2
         group = f["particles/all"]
-        self.fields = ["position"] + sorted(k for k in group if k not in ("position", "box")
+        self.fields = ["position"] + sorted(k for k in group if k not in ("position", "box", "id")
                                             and isinstance(group[k], h5py.Group) and "value" in group[k])
 
     def chains(self, i):

@@ -91,6 +91,36 @@ def test_an_injected_chain_reads_back_in_chain_order(request, fixture, chain):
         assert np.linalg.norm(np.diff(stored, axis=0), axis=1).max() > 1.5 * lengths.max()
 
 
+@pytest.mark.parametrize("fixture", ["crumple_run", "pack_run"])
+def test_a_growing_trajectory_follows_h5md(request, fixture):
+    """H5MD 1.1 on a run whose node count grows: id is the node index with fill value -1
+    past each frame's count, observables/nodes is that count, edges past a frame's own read
+    -1, box/dimension is a scalar, and connectivity/edges names its particles group by an
+    object reference."""
+    res = request.getfixturevalue(fixture)
+    name = res.result["case"].split("/")[1]
+    with io.Trajectory(os.path.join(res.run_dir, f"{name}.h5")) as t:
+        f = t.file
+        assert tuple(f["h5md"].attrs["version"]) == (1, 1)
+        dim = f["particles/all/box"].attrs["dimension"]
+        assert np.ndim(dim) == 0 and int(dim) == t.dimension
+        ids = f["particles/all/id/value"]
+        assert ids.dtype.kind == "i" and ids.fillvalue == -1
+        counts = np.asarray(f["observables/nodes/value"])
+        np.testing.assert_array_equal(f["observables/nodes/step"], f["particles/all/position/step"])
+        assert counts[0] < counts[-1] == res.result["nodes"], "the wire did not grow: nothing tested"
+        for k, n in enumerate(counts):
+            row = np.asarray(ids[k])[:, 0]
+            np.testing.assert_array_equal(row[:n], np.arange(n))
+            assert np.all(row[n:] == -1)
+        edges = f["connectivity/edges/value"]
+        assert edges.fillvalue == -1
+        first = np.asarray(edges[0])
+        assert np.all(first[counts[0] - 1:] == -1) and np.all(first[:counts[0] - 1] >= 0)
+        ref = f["connectivity/edges"].attrs["particles_group"]
+        assert isinstance(ref, h5py.Reference) and f[ref].name == "/particles/all"
+
+
 def test_shell_surface_frames(plate_run):
     r = plate_run.result
     with io.Surface(os.path.join(plate_run.run_dir, "plate.h5")) as s:

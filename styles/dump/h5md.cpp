@@ -1,6 +1,9 @@
-// Trajectory dump in HDF5 following the H5MD 1.1 layout (particles/all/<field>/
-// {step,time,value}, connectivity/edges), plus an XDMF side file so ParaView opens
-// the trajectory as polylines directly. The file is flushed after every frame.
+// Trajectory dump in HDF5 following the H5MD 1.1 layout: particles/all/<field>/
+// {step,time,value}, particles/all/id (the node index, fill value -1 past a frame's node
+// count), observables/nodes (the count per frame), connectivity/edges (fill value -1, its
+// particles_group an object reference to particles/all). Outside H5MD, xdmf/polylines holds
+// the chains as XDMF mixed-topology polylines for the XDMF side file, so ParaView opens the
+// trajectory as one polyline per wire. The file is flushed after every frame.
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -48,18 +51,22 @@ class H5mdDump : public DumpStyle {
     auto particles = h5::create_group(file_h_, "particles");
     all_ = h5::create_group(particles, "all");
     auto box = h5::create_group(all_, "box");
-    h5::attr_ints(box, "dimension", {dim_});
+    h5::attr_int(box, "dimension", dim_);
     h5::attr_strings(box, "boundary", std::vector<std::string>(static_cast<size_t>(dim_), "none"));
     for (auto& f : fields_) {
       ncomps_.push_back(ncomp(sim, f));
       series_.push_back(std::make_unique<h5::TimeSeries>(all_, f, ncomps_.back(), false));
     }
+    ids_ = std::make_unique<h5::TimeSeries>(all_, "id", 1, true);
+    auto obs = h5::create_group(file_h_, "observables");
+    count_ = std::make_unique<h5::ScalarSeries>(obs, "nodes");
     auto conn = h5::create_group(file_h_, "connectivity");
     edges_ = std::make_unique<h5::TimeSeries>(conn, "edges", 2, true);
+    h5::attr_reference(h5::open_group(conn, "edges"), "particles_group", file_h_, "/particles/all");
     // the same chains as XDMF mixed-topology polylines, one per chain in chain order (closed
     // chains end on their first node): ParaView's Tube filter draws each wire as one tube
-    polylines_ = std::make_unique<h5::TimeSeries>(conn, "polylines", 1, true);
-    h5::attr_string(conn, "particles_group", "/particles/all");
+    auto xdmf = h5::create_group(file_h_, "xdmf");
+    polylines_ = std::make_unique<h5::TimeSeries>(xdmf, "polylines", 1, true);
   }
 
   void write(Simulation& sim) override {
@@ -69,6 +76,10 @@ class H5mdDump : public DumpStyle {
       std::vector<double> buf = gather(sim, fields_[k]);
       series_[k]->append(sim.step, sim.time, buf.data(), N);
     }
+    std::vector<double> id(N);
+    for (size_t i = 0; i < N; ++i) id[i] = double(i);
+    ids_->append(sim.step, sim.time, id.data(), N);
+    count_->append(sim.step, sim.time, double(N));
     std::vector<double> e;
     for (auto& c : sim.topology().chains)
       for (int j = 0; j < c.n_edges(); ++j)
@@ -149,8 +160,7 @@ class H5mdDump : public DumpStyle {
       out << "<Grid Name=\"frame" << t << "\" GridType=\"Uniform\">\n<Time Value=\""
           << shown[static_cast<size_t>(t)] << "\"/>\n";
       out << "<Topology TopologyType=\"Mixed\" NumberOfElements=\"" << fr.lines << "\">\n"
-          << slab("/connectivity/polylines/value", t, fr.line_values, 1, polylines_->capacity(), T,
-                  "Int")
+          << slab("/xdmf/polylines/value", t, fr.line_values, 1, polylines_->capacity(), T, "Int")
           << "</Topology>\n";
       out << "<Geometry GeometryType=\"" << (dim_ == 2 ? "XY" : "XYZ") << "\">\n"
           << slab("/particles/all/position/value", t, fr.nodes, dim_, series_[0]->capacity(), T,
@@ -177,7 +187,8 @@ class H5mdDump : public DumpStyle {
   int dim_;
   h5::Handle file_h_, all_;
   std::vector<std::unique_ptr<h5::TimeSeries>> series_;
-  std::unique_ptr<h5::TimeSeries> edges_, polylines_;
+  std::unique_ptr<h5::TimeSeries> ids_, edges_, polylines_;
+  std::unique_ptr<h5::ScalarSeries> count_;
   std::vector<Frame> frames_;
   std::vector<int> ncomps_;
 };

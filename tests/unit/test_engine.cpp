@@ -393,7 +393,7 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   EXPECT_EQ(edims[1], 6u);
   // one open chain of 7 nodes is one XDMF polyline: cell type 2, 7 nodes, the nodes in order
   std::vector<hsize_t> ldims;
-  auto lines = h5::read_doubles(f, "connectivity/polylines/value", &ldims);
+  auto lines = h5::read_doubles(f, "xdmf/polylines/value", &ldims);
   ASSERT_EQ(ldims.size(), 3u);
   EXPECT_EQ(ldims[1], 9u);
   std::vector<double> first(lines.begin(), lines.begin() + 9);
@@ -402,7 +402,7 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   std::stringstream ss;
   ss << x.rdbuf();
   EXPECT_NE(ss.str().find("TopologyType=\"Mixed\" NumberOfElements=\"1\""), std::string::npos);
-  EXPECT_NE(ss.str().find("test_dump.h5:/connectivity/polylines/value"), std::string::npos);
+  EXPECT_NE(ss.str().find("test_dump.h5:/xdmf/polylines/value"), std::string::npos);
   EXPECT_NE(ss.str().find("test_dump.h5:/particles/all/velocity/value"), std::string::npos);
   std::remove(file.c_str());
   std::remove((file + ".xdmf").c_str());

@@ -10,10 +10,63 @@
 #include <cmath>
 #include <vector>
 
+#include "context.hpp"
 #include "nodes.hpp"
+#include "params.hpp"
 #include "threads.hpp"
+#include "topology.hpp"
 
 namespace slender {
+
+// Per-node fields of a 2D bending style, for dumps and plots (off by default, and then
+// nothing is allocated): bend.curvature, kappa = zeta / l0 at each interior node, and
+// bend.energy, its bending energy. The end nodes of open chains read 0. Derived from the
+// positions at every force evaluation, so not kept in checkpoints.
+inline void declare_node_fields(ParamSpec& s) {
+  s.boolean("node_fields",
+            "keep each interior node's curvature zeta / l0 and bending energy in the node "
+            "properties bend.curvature and bend.energy (for dumps; off: nothing allocated)")
+      .def(false);
+}
+class HingeNodeFields {
+ public:
+  void bind(Context& sim, const ParamValues& p) {
+    on_ = p.boolean("node_fields");
+    rebind(sim);
+  }
+  void rebind(Context& sim) {
+    if (!on_) return;
+    const PropertyOptions derived{.restart = false, .dump = true};
+    curvature_ = &sim.nodes().require<double>("bend.curvature", 0.0, derived);
+    energy_ = &sim.nodes().require<double>("bend.energy", 0.0, derived);
+  }
+  bool on() const { return on_; }
+  void clear() {
+    if (!on_) return;
+    for (auto& k : curvature_->values()) k = 0.0;
+    for (auto& e : energy_->values()) e = 0.0;
+  }
+  // each hinge writes its own interior node: safe on threads
+  void set(int node, double kappa, double energy) {
+    if (!on_) return;
+    (*curvature_)[node] = kappa;
+    (*energy_)[node] = energy;
+  }
+
+ private:
+  bool on_ = false;
+  Property<double>* curvature_ = nullptr;
+  Property<double>* energy_ = nullptr;
+};
+
+// The rest length hinge h of a chain stands for: the mean of its two edges (the curvature
+// of a 2D wire is kappa = zeta / l0, docs/models.md §2.1).
+inline double hinge_rest_length(const Chain& c, int h) {
+  const int ne = c.n_edges();
+  const int e_prev = c.closed ? (h - 1 + ne) % ne : h;
+  const int e_next = c.closed ? h : h + 1;
+  return 0.5 * (c.rest_length[e_prev] + c.rest_length[e_next]);
+}
 
 // atan2(c, d) for a hinge's turning angle. Most hinges of a wire turn by less than
 // 0.2 rad, where the series atan t = t - t^3/3 + t^5/5 - ... (t = c/d), summed to t^25,

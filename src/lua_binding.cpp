@@ -494,7 +494,20 @@ int l_thermo(lua_State* L) {
              return false;
            }());
     }
-    if (!ok) throw InputError("thermo: unknown column '" + c + "'");
+    if (!ok) {
+      std::string known;
+      if (dot != std::string::npos)
+        if (Style* s = sim.find_style(c.substr(0, dot))) {
+          for (auto& k : s->value_keys()) known += (known.empty() ? "" : ", ") + k;
+          known = "; '" + s->id() + "' (" + s->family_name() + " " + s->style_name() + ") offers " +
+                  (known.empty() ? std::string("no values") : known);
+        }
+      if (known.empty()) {
+        for (auto& b : Simulation::builtin_columns()) known += (known.empty() ? "" : ", ") + b;
+        known = "; built in: " + known + "; or <id>.<key> of a style, energy.<category>";
+      }
+      throw InputError("thermo: unknown column '" + c + "'" + known);
+    }
   }
   return 0;
 }

@@ -2,8 +2,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <memory>
 #include <string>
 
+#include "console_log.hpp"
 #include "lua_binding.hpp"
 #include "registry.hpp"
 #include "threads.hpp"
@@ -12,8 +15,9 @@ namespace {
 
 void usage() {
   std::printf(
-      "usage: slender DECK.lua [-v name=value ...] [-t N] [-q] [--inventory FILE]\n"
+      "usage: slender DECK.lua [-v name=value ...] [-t N] [-q] [-log FILE] [--inventory FILE]\n"
       "       (-t: threads of the force kernels, default OMP_NUM_THREADS or 1;\n"
+      "        -log: a copy of the console, default log.slender here, 'none' for none;\n"
       "        --inventory appends what each simulation held, one JSON line each)\n"
       "       slender --list-styles\n"
       "       slender --markdown-styles  (the style reference, docs/styles.md)\n"
@@ -39,6 +43,16 @@ int list_styles() {
   return 0;
 }
 
+// The thermo values a style offers, as a Markdown table ("" when none).
+std::string outputs_markdown(const slender::ParamSpec& spec) {
+  if (spec.outputs.empty()) return "";
+  std::string out =
+      "\nThermo columns `<id>.<key>` (the id the deck gave the style):\n\n"
+      "| key | meaning |\n|---|---|\n";
+  for (auto& [key, help] : spec.outputs) out += "| `" + key + "` | " + help + " |\n";
+  return out;
+}
+
 // The style reference in Markdown (docs/styles.md is this output; a test keeps it current).
 int markdown_styles() {
   std::printf(
@@ -56,14 +70,15 @@ int markdown_styles() {
       std::printf("\n### `%s`\n\n%s\n\n", e.name.c_str(), spec.summary.c_str());
       if (spec.decls.empty()) {
         std::printf("No parameters.\n");
-        continue;
+      } else {
+        std::printf("| key | type | default | range | meaning |\n|---|---|---|---|---|\n");
+        for (auto& d : spec.decls) {
+          const std::string def = d.default_text();
+          std::printf("| `%s` | %s | %s | %s | %s |\n", d.name.c_str(), slender::type_name(d.type),
+                      def.c_str(), d.range_text().c_str(), d.help.c_str());
+        }
       }
-      std::printf("| key | type | default | range | meaning |\n|---|---|---|---|---|\n");
-      for (auto& d : spec.decls) {
-        const std::string def = d.default_text();
-        std::printf("| `%s` | %s | %s | %s | %s |\n", d.name.c_str(), slender::type_name(d.type),
-                    def.c_str(), d.range_text().c_str(), d.help.c_str());
-      }
+      std::fputs(outputs_markdown(spec).c_str(), stdout);
     }
     if (!any) std::printf("\nNone registered yet.\n");
   }
@@ -99,6 +114,7 @@ int style_pages(const std::string& dir) {
                      slender::type_name(d.type), d.default_text().c_str(), d.range_text().c_str(),
                      d.help.c_str());
     }
+    std::fputs(outputs_markdown(spec).c_str(), f);
     std::fclose(f);
     ++n;
   }
@@ -121,6 +137,8 @@ int help_style(const std::string& name) {
 
 int main(int argc, char** argv) {
   slender::DeckOptions opt;
+  std::string log_path = "log.slender";
+  bool log_chosen = false;
   try {
     slender::load_plugins_from_environment();  // SLENDER_PLUGIN_PATH
   } catch (const std::exception& e) {
@@ -153,6 +171,13 @@ int main(int argc, char** argv) {
     }
     if (a == "-q") {
       opt.quiet = true;
+    } else if (a == "-log" || a == "--log") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "slender: -log needs a file (or none)\n");
+        return 2;
+      }
+      log_path = argv[++i];
+      log_chosen = true;
     } else if (a == "--inventory") {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "slender: --inventory needs a file\n");
@@ -192,5 +217,25 @@ int main(int argc, char** argv) {
     usage();
     return 2;
   }
-  return slender::run_deck(opt);
+  std::unique_ptr<slender::ConsoleLog> log;
+  if (log_path != "none") {
+    try {
+      log = std::make_unique<slender::ConsoleLog>(log_path);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "slender: %s\n", e.what());
+      if (log_chosen) return 2;  // the default log is a convenience, a chosen one a promise
+    }
+  }
+  if (log) {
+    std::string cmd = "# slender " SLENDER_VERSION_STRING ":";
+    for (int i = 0; i < argc; ++i) cmd += std::string(" ") + argv[i];
+    char date[64];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S %Z", std::localtime(&now));
+    log->note(cmd);
+    log->note(std::string("# started ") + date);
+  }
+  const int rc = slender::run_deck(opt);
+  log.reset();
+  return rc;
 }

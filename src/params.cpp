@@ -247,6 +247,10 @@ std::string ParamSpec::help_text() const {
     if (!r.empty()) os << ", " << r;
     os << "): " << d.help << "\n";
   }
+  if (!outputs.empty()) {
+    os << "  values for thermo columns (<id>.<key>):\n";
+    for (auto& [key, help] : outputs) os << "    " << key << ": " << help << "\n";
+  }
   return os.str();
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -86,6 +87,10 @@ struct ParamSpec {
   std::string name;
   std::string summary;
   std::vector<ParamDecl> decls;
+  // The values a style offers to thermo as "<id>.<key>": (key, meaning). They are the keys
+  // Style::value_keys() reports, listed by --help, the style pages and the "unknown column"
+  // error.
+  std::vector<std::pair<std::string, std::string>> outputs;
 
   ParamSpec() = default;
   ParamSpec(std::string fam, std::string nm, std::string sum)
@@ -108,6 +113,10 @@ struct ParamSpec {
     return add(key, ParamType::Vector, help);
   }
   const ParamDecl* find(const std::string& key) const;
+  ParamSpec& output(const std::string& key, const std::string& help) {
+    outputs.emplace_back(key, help);
+    return *this;
+  }
 
   // Checks keys, types and ranges; fills defaults. Throws InputError.
   ParamValues validate(const RawParams& raw) const;

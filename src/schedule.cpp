@@ -1,6 +1,7 @@
 #include "schedule.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 #include "context.hpp"
 
@@ -9,7 +10,8 @@ namespace slender {
 void Schedule::build(const std::vector<ShellStyle*>& shells, const std::vector<BondStyle*>& bonds,
                      const std::vector<PairStyle*>& pairs, const std::vector<FixStyle*>& fixes,
                      Constraints constraints) {
-  calls_.clear();
+  std::vector<Call> old;
+  old.swap(calls_);
   for (auto* s : shells) calls_.push_back(Call{Stage::kForce, s->priority(), s});
   for (auto* b : bonds) calls_.push_back(Call{Stage::kForce, b->priority(), nullptr, b});
   for (auto* p : pairs) calls_.push_back(Call{Stage::kForce, p->priority(), nullptr, nullptr, p});
@@ -25,27 +27,58 @@ void Schedule::build(const std::vector<ShellStyle*>& shells, const std::vector<B
     if (a.stage != b.stage) return a.stage < b.stage;
     return a.priority < b.priority;
   });
+  for (Call& c : calls_)
+    for (const Call& o : old)
+      if (o.stage == c.stage && o.style() == c.style()) c.seconds = o.seconds;
   constraints_ = std::move(constraints);
 }
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
 
 void Schedule::forces(Simulation& sim, std::map<std::string, double>& energy) const {
   double ext = 0.0;
   Context& ctx = sim.context();
   for (const Call& c : calls_) {
+    if (c.stage != Stage::kForce && c.stage != Stage::kPostForce) continue;
+    const auto t0 = std::chrono::steady_clock::now();
     if (c.stage == Stage::kForce) {
       if (c.shell) c.shell->compute(ctx);
       if (c.bond) energy[c.bond->energy_category()] += c.bond->compute(ctx);
       if (c.pair) energy["contact"] += c.pair->compute(ctx);
-    } else if (c.stage == Stage::kPostForce) {
+    } else {
       ext += c.fix->post_force(ctx);
     }
+    c.seconds += seconds_since(t0);
   }
   energy["external"] += ext;
 }
 
 void Schedule::end_of_step(Simulation& sim) const {
   for (const Call& c : calls_)
-    if (c.stage == Stage::kEndOfStep) c.fix->end_of_step(sim.context());
+    if (c.stage == Stage::kEndOfStep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      c.fix->end_of_step(sim.context());
+      c.seconds += seconds_since(t0);
+    }
+}
+
+std::vector<std::pair<std::string, double>> Schedule::timings() const {
+  std::vector<std::pair<std::string, double>> out;
+  for (const Call& c : calls_) {
+    std::string name = c.label();
+    name = name.substr(0, name.rfind(" ["));
+    if (c.stage == Stage::kEndOfStep) name += " (end of step)";
+    out.emplace_back(name, c.seconds);
+  }
+  return out;
+}
+
+void Schedule::reset_timings() {
+  for (Call& c : calls_) c.seconds = 0.0;
 }
 
 std::vector<const FixStyle*> Schedule::post_force_fixes() const {
@@ -55,11 +88,15 @@ std::vector<const FixStyle*> Schedule::post_force_fixes() const {
   return out;
 }
 
+const Style* Schedule::Call::style() const {
+  return shell  ? static_cast<const Style*>(shell)
+         : bond ? static_cast<const Style*>(bond)
+         : pair ? static_cast<const Style*>(pair)
+                : static_cast<const Style*>(fix);
+}
+
 std::string Schedule::Call::label() const {
-  const Style* s = shell  ? static_cast<const Style*>(shell)
-                   : bond ? static_cast<const Style*>(bond)
-                   : pair ? static_cast<const Style*>(pair)
-                          : static_cast<const Style*>(fix);
+  const Style* s = style();
   const char* family = shell ? "shell" : bond ? "bond" : pair ? "pair" : "fix";
   std::string name = std::string(family) + " " + s->id();
   if (s->style_name() != s->id()) name += " (" + s->style_name() + ")";

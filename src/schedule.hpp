@@ -8,6 +8,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "style.hpp"
@@ -44,6 +45,11 @@ class Schedule {
   // `run` and compared by the golden test.
   std::string describe() const;
 
+  // Wall seconds spent in each call since the last reset (kept across rebuilds of the lists
+  // for the styles that stay), for the end-of-run summary: (family id [stage], seconds).
+  std::vector<std::pair<std::string, double>> timings() const;
+  void reset_timings();
+
  private:
   struct Call {
     Stage stage;
@@ -52,6 +58,8 @@ class Schedule {
     BondStyle* bond = nullptr;
     PairStyle* pair = nullptr;
     FixStyle* fix = nullptr;
+    mutable double seconds = 0.0;
+    const Style* style() const;
     std::string label() const;
   };
   std::vector<Call> calls_;  // sorted by stage, then priority, then the deck's order

@@ -12,6 +12,15 @@
 
 namespace slender {
 
+std::vector<std::string> Style::value_keys() const {
+  std::vector<std::string> keys;
+  for (auto& e : Catalog::entries())
+    if (e.family == family_name() && e.name == style_name()) {
+      for (auto& [key, help] : e.spec().outputs) keys.push_back(key);
+      break;
+    }
+  return keys;
+}
 double Style::value(const std::string& key) const {
   throw InputError("'" + id() + "' (" + style_name() + ") has no value '" + key + "'");
 }
@@ -541,12 +550,43 @@ void Simulation::after_step(long k, bool last, double t0) {
   };
   bool dump_now = false;
   for (auto& d : dumps_) dump_now = dump_now || due(*d);
+  using clock = std::chrono::steady_clock;
   // Outputs only ever see a state the guard has passed: no NaN in files.
-  if ((guard.every > 0 && k % guard.every == 0) || thermo_now || dump_now || last) check_guard(k);
+  if ((guard.every > 0 && k % guard.every == 0) || thermo_now || dump_now || last) {
+    const auto g0 = clock::now();
+    check_guard(k);
+    run_seconds_.guard += std::chrono::duration<double>(clock::now() - g0).count();
+  }
+  if (!thermo_now && !dump_now) return;
+  const auto o0 = clock::now();
   if (thermo_now) write_thermo(false);
   if (dump_now)
     for (auto& d : dumps_)
       if (due(*d)) d->write(*this);
+  run_seconds_.output += std::chrono::duration<double>(clock::now() - o0).count();
+}
+
+void Simulation::print_run_summary(long steps, double seconds) const {
+  if (!verbose || steps <= 0 || !(seconds > 0)) return;
+  const double n = static_cast<double>(nodes_.n_owned());
+  std::printf(
+      "run summary: %ld steps in %.4g s: %.4g steps/s, %.4g node-steps/s (%zu nodes at the end)\n",
+      steps, seconds, steps / seconds, steps * n / seconds, nodes_.n_owned());
+  // time by stage, largest first; what is left is the integrator, the core's constraints,
+  // the adaptive step's estimate and the loop itself
+  std::vector<std::pair<std::string, double>> parts = schedule_.timings();
+  double styles = 0.0;
+  for (auto& [name, t] : parts) styles += t;
+  parts.emplace_back("outputs (thermo, dumps)", run_seconds_.output);
+  parts.emplace_back("guard", run_seconds_.guard);
+  parts.emplace_back("integrator and the rest",
+                     std::max(0.0, seconds - styles - run_seconds_.output - run_seconds_.guard));
+  std::stable_sort(parts.begin(), parts.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::printf("  time by stage:");
+  for (auto& [name, t] : parts)
+    if (t >= 0.0005 * seconds) std::printf(" %s %.1f%%;", name.c_str(), 100.0 * t / seconds);
+  std::printf("\n");
 }
 
 void Simulation::run(const RunOptions& opt) {
@@ -561,6 +601,18 @@ void Simulation::run(const RunOptions& opt) {
   const auto t0 = clock::now();
   auto last_progress = t0;
   const long first = step;
+  schedule_.reset_timings();
+  run_seconds_ = {};
+  // the first style that knows how far the run is toward its own stop (e.g. a target
+  // packing density) gives a second ETA besides the step count's
+  const Style* goal = nullptr;
+  double goal_start = 0.0;
+  for (const Style* st : styles())
+    if (st->stop_progress(nullptr) >= 0.0) {
+      goal = st;
+      goal_start = st->stop_progress(nullptr);
+      break;
+    }
   const bool adaptive = integrator_->adaptive();
   const double dt_cap = dt;
   for (long k = 1; k <= opt.steps; ++k) {
@@ -588,10 +640,23 @@ void Simulation::run(const RunOptions& opt) {
       if (since >= thermo.progress_seconds) {
         double el = std::chrono::duration<double>(now - t0).count();
         double rate = (step - first) / el;
+        double eta = (opt.steps - k) / rate;
+        std::string to = "the step count";
+        if (goal) {
+          std::string what;
+          const double p = goal->stop_progress(&what);
+          if (p > goal_start) {
+            const double eta_goal = el * (1.0 - p) / (p - goal_start);
+            if (eta_goal < eta) {
+              eta = eta_goal;
+              to = what;
+            }
+          }
+        }
         std::printf(
-            "  progress: step %ld of %ld (%.0f%%), %.3g steps/s, %.3g node-steps/s, ETA %.0f s\n",
-            k, opt.steps, 100.0 * k / opt.steps, rate, rate * nodes_.n_owned(),
-            (opt.steps - k) / rate);
+            "  progress: step %ld of %ld (%.0f%%), %.3g steps/s, %.3g node-steps/s, ETA %.0f s "
+            "(to %s)\n",
+            k, opt.steps, 100.0 * k / opt.steps, rate, rate * nodes_.n_owned(), eta, to.c_str());
         std::fflush(stdout);
         last_progress = now;
       }
@@ -600,6 +665,7 @@ void Simulation::run(const RunOptions& opt) {
   last_stop_ = stop_reason_;
   stop_reason_.clear();
   for (auto& d : dumps_) d->flush();
+  print_run_summary(step - first, std::chrono::duration<double>(clock::now() - t0).count());
   if (interrupted()) finish_interrupted();
 }
 

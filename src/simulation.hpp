@@ -246,6 +246,12 @@ class Simulation {
   // Resolves which fixes act at which stage and lets styles bind to the scene.
   void build_schedule();
   void check_guard(long step_in_run);
+  // "run summary": steps, wall time, node-steps/s and the time by stage (verbose runs)
+  void print_run_summary(long steps, double seconds) const;
+  struct RunSeconds {
+    double guard = 0.0, output = 0.0;
+  };
+  RunSeconds run_seconds_;
   void save_good_state();
   std::string last_good_problem() const;
   // Guard, thermo and dumps after step k of a run or minimisation, which took the clock

@@ -82,8 +82,16 @@ class Style {
   virtual void restore_kept() {
     if (!kept_.empty()) load_state(kept_);
   }
+  // How far the run is toward this style's own stop condition, in [0, 1] (a packing density
+  // toward its target), with `what` naming it; -1 when the style has none. The run's
+  // progress line turns it into an ETA.
+  virtual double stop_progress(std::string* what) const {
+    (void)what;
+    return -1.0;
+  }
   // Scalars this style offers to thermo as "<id>.<key>".
-  virtual std::vector<std::string> value_keys() const { return {}; }
+  // Default: the outputs of the style's declaration (ParamSpec::output).
+  virtual std::vector<std::string> value_keys() const;
   virtual double value(const std::string& key) const;
   // Changes parameters between runs (sim:modify). Default: not supported.
   virtual void modify(const RawParams& raw);

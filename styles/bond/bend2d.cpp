@@ -19,6 +19,7 @@ class Bend2dBond : public ChainBondStyle {
            "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (docs/models.md §2.1)")
         .def(0.0)
         .nonnegative();
+    declare_node_fields(s);
     declare_chains(s);
     return s;
   }
@@ -26,6 +27,11 @@ class Bend2dBond : public ChainBondStyle {
       : ChainBondStyle(sim, p), k_(p.real("k")), gamma_(p.real("damping")) {
     if (sim.dimension() != 2)
       throw InputError("bond style 'bend2d' needs a 2D simulation (dimension = 2)");
+    fields_.bind(sim, p);
+  }
+  void setup(Context& sim) override {
+    ChainBondStyle::setup(sim);
+    fields_.rebind(sim);
   }
   const char* energy_category() const override { return "bend"; }
 
@@ -33,6 +39,7 @@ class Bend2dBond : public ChainBondStyle {
     const auto& x = sim.nodes().x;
     const auto& v = sim.nodes().v;
     double energy = 0.0;
+    fields_.clear();
     for (auto* c : chains(sim)) {
       // hinge h touches three consecutive chain positions from hinge_first_position(h)
       energy += sim.parallel_chain_forces(
@@ -49,6 +56,9 @@ class Bend2dBond : public ChainBondStyle {
               if (gamma_ > 0) moment += gamma_ * g.rate(v, a, m, b);
               g.apply(f, c->hinge_first_position(static_cast<int>(h)), a, m, b, moment);
               e_part += 0.5 * k_ * zeta * zeta;
+              if (fields_.on())
+                fields_.set(m, zeta / hinge_rest_length(*c, static_cast<int>(h)),
+                            0.5 * k_ * zeta * zeta);
             }
             return e_part;
           });
@@ -59,6 +69,7 @@ class Bend2dBond : public ChainBondStyle {
 
  private:
   double k_, gamma_;
+  HingeNodeFields fields_;
 };
 
 }  // namespace slender

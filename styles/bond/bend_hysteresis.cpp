@@ -50,7 +50,14 @@ class BendHysteresisBond : public ChainBondStyle {
            "bending dashpot gamma_r: the moment gains gamma_r dzeta/dt (docs/models.md §2.1)")
         .def(0.0)
         .nonnegative();
+    declare_node_fields(s);
     declare_chains(s);
+    s.output("dissipated", "energy dissipated by plastic flow since the start");
+    s.output("work",
+             "work done on the hinges since the start: dissipated plus the change of recoverable "
+             "energy");
+    s.output("recoverable",
+             "recoverable bending energy at the last force evaluation (as reported under bend)");
     return s;
   }
 
@@ -70,6 +77,7 @@ class BendHysteresisBond : public ChainBondStyle {
     auto chains = select_chains(sim, names_);
     auto& n = sim.nodes();
     kpl_ = &n.require<double>("bend.plastic_curvature", 0.0);
+    fields_.bind(sim, p);
     const double amp = p.real("initial_plastic");
     if (amp > 0) {
       std::uniform_real_distribution<double> u(-amp, amp);
@@ -86,7 +94,7 @@ class BendHysteresisBond : public ChainBondStyle {
       for (int h = 0; h < c->n_hinges(); ++h) {
         int a, m, b;
         c->hinge(h, a, m, b);
-        const double l0 = rest(*c, h);
+        const double l0 = hinge_rest_length(*c, h);
         const double kappa =
             Hinge2d(sim.nodes().x[a], sim.nodes().x[m], sim.nodes().x[b]).zeta / l0;
         double kpl = (*kpl_)[m];  // a copy: no flow is committed here
@@ -99,6 +107,7 @@ class BendHysteresisBond : public ChainBondStyle {
   void setup(Context& sim) override {
     ChainBondStyle::setup(sim);
     kpl_ = sim.nodes().find<double>("bend.plastic_curvature");
+    fields_.rebind(sim);
   }
   const char* energy_category() const override { return "bend"; }
 
@@ -163,6 +172,7 @@ class BendHysteresisBond : public ChainBondStyle {
     // the dissipated energy of threads 1.. is added after the kernel, in thread order;
     // thread 0 adds straight into the running total (the serial order)
     std::array<double, kMaxThreads> lost_part{};
+    fields_.clear();
     for (auto* c : chains(sim)) {
       const int T = threads_for(static_cast<std::size_t>(c->n_hinges()), sim.threads());
       energy += sim.parallel_chain_forces(
@@ -174,7 +184,7 @@ class BendHysteresisBond : public ChainBondStyle {
               const int h = static_cast<int>(k);
               int a, m, b;
               c->hinge(h, a, m, b);
-              const double l0 = rest(*c, h), Ke = k_ * l0;
+              const double l0 = hinge_rest_length(*c, h), Ke = k_ * l0;
               const Hinge2d g(x[a], x[m], x[b]);
               const double zeta = g.zeta;
               const double kappa = zeta / l0;
@@ -186,6 +196,7 @@ class BendHysteresisBond : public ChainBondStyle {
               const double Mt = gamma_ > 0 ? M + gamma_ * g.rate(v, a, m, b) : M;
               g.apply(f, c->hinge_first_position(h), a, m, b, Mt);
               e_part += stored * l0;
+              fields_.set(m, kappa, stored * l0);
             }
             return e_part;
           });
@@ -199,9 +210,6 @@ class BendHysteresisBond : public ChainBondStyle {
   }
   // the elastic slope is the stiffest (K_h < K_e): as bend2d
   double max_frequency(const Context& sim) const override { return bend_frequency(sim, k_); }
-  std::vector<std::string> value_keys() const override {
-    return {"dissipated", "work", "recoverable"};
-  }
   double value(const std::string& key) const override {
     if (key == "work") return dissipated_ + recoverable_ - recoverable0_;
     if (key == "recoverable") return recoverable_;
@@ -219,19 +227,12 @@ class BendHysteresisBond : public ChainBondStyle {
   }
 
  private:
-  // rest length that a hinge stands for: the mean of its two edges
-  static double rest(const Chain& c, int h) {
-    const int ne = c.n_edges();
-    const int e_prev = c.closed ? (h - 1 + ne) % ne : h;
-    const int e_next = c.closed ? h : h + 1;
-    return 0.5 * (c.rest_length[e_prev] + c.rest_length[e_next]);
-  }
-
   double k_, ky_, ratio_, delta_;
   double curve_ = delta_ > 0 ? (1 - ratio_) / (2 * delta_) : 0.0;  // c / K_e of the transition
   bool guard_;
   double gamma_;
   Property<double>* kpl_ = nullptr;
+  HingeNodeFields fields_;
   double dissipated_ = 0.0, recoverable_ = 0.0, recoverable0_ = 0.0;
 };
 

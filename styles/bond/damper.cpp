@@ -16,6 +16,7 @@ class DamperBond : public ChainBondStyle {
                 "(damps vibrations, not rigid sliding along the chain)");
     s.real("gamma", "damping coefficient (force per relative velocity)").required().nonnegative();
     declare_chains(s);
+    s.output("gamma", "damping coefficient gamma (force per relative velocity)");
     return s;
   }
   DamperBond(Context& sim, const ParamValues& p)
@@ -40,7 +41,6 @@ class DamperBond : public ChainBondStyle {
     auto ch = select_chains(sim, names_);
     return ch.empty() ? 0.0 : 4.0 * gamma_ / min_mass(sim, ch);
   }
-  std::vector<std::string> value_keys() const override { return {"gamma"}; }
   double value(const std::string& key) const override {
     if (key == "gamma") return gamma_;
     return BondStyle::value(key);

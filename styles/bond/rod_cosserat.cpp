@@ -44,6 +44,8 @@ class CosseratRodBond : public ChainBondStyle {
     s.boolean("node_energy", "keep each vertex's bending energy in the node property bend.energy")
         .def(false);
     declare_chains(s);
+    s.output("misalignment",
+             "largest |t - d3| over the edges: how far d3 strays from the edge tangent");
     return s;
   }
   CosseratRodBond(Context& sim, const ParamValues& p)
@@ -138,7 +140,6 @@ class CosseratRodBond : public ChainBondStyle {
     return bend;
   }
 
-  std::vector<std::string> value_keys() const override { return {"misalignment"}; }
   double value(const std::string& key) const override {
     if (key == "misalignment") return misalignment_;  // max |t - d3| over the edges
     return ChainBondStyle::value(key);

@@ -13,6 +13,7 @@ class SpringBond : public ChainBondStyle {
     ParamSpec s("bond", name, "Hookean stretching spring along every edge of a chain");
     s.real("k", "spring stiffness k1 = YA/l0 (force per length)").required().positive();
     declare_chains(s);
+    s.output("k", "spring stiffness k (force per length)");
     return s;
   }
   SpringBond(Context& sim, const ParamValues& p) : ChainBondStyle(sim, p), k_(p.real("k")) {}
@@ -43,7 +44,6 @@ class SpringBond : public ChainBondStyle {
     return energy;
   }
   double max_frequency(const Context& sim) const override { return stretch_frequency(sim, k_); }
-  std::vector<std::string> value_keys() const override { return {"k"}; }
   double value(const std::string& key) const override {
     if (key == "k") return k_;
     return BondStyle::value(key);

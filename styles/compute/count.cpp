@@ -9,6 +9,11 @@ class CountCompute : public ComputeStyle {
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("compute", name, "counts: nodes, edges, chains, ghosts; or the nodes of one group");
     s.string("group", "count only this group's nodes for key 'group'").def(std::string("all"));
+    s.output("nodes", "number of owned nodes (ghosts not counted)");
+    s.output("edges", "number of edges");
+    s.output("chains", "number of chains");
+    s.output("ghosts", "number of ghost nodes");
+    s.output("group", "number of nodes in the group named by 'group'");
     return s;
   }
   CountCompute(Simulation& sim, const ParamValues& p) : group_(p.str("group")) {
@@ -20,9 +25,6 @@ class CountCompute : public ComputeStyle {
     edges_ = sim.topology().n_edges();
     chains_ = static_cast<double>(sim.topology().chains.size());
     group_count_ = static_cast<double>(sim.group(group_).size());
-  }
-  std::vector<std::string> value_keys() const override {
-    return {"nodes", "edges", "chains", "ghosts", "group"};
   }
   double value(const std::string& key) const override {
     if (key == "nodes") return nodes_;

@@ -8,8 +8,16 @@ namespace slender {
 class EnergyCompute : public ComputeStyle {
  public:
   static ParamSpec spec(const std::string& name) {
-    return ParamSpec("compute", name,
-                     "energies: kinetic, stretch, bend, contact, external, potential, total");
+    ParamSpec s("compute", name,
+                "energies: kinetic, stretch, bend, contact, external, potential, total");
+    s.output("kinetic", "kinetic energy");
+    s.output("stretch", "stretching energy of the last force evaluation (0 without such a style)");
+    s.output("bend", "bending energy of the last force evaluation (0 without such a style)");
+    s.output("contact", "contact energy of the pair styles at the last force evaluation");
+    s.output("external", "energy of the fixes (loads, walls) at the last force evaluation");
+    s.output("potential", "potential energy: all categories of the last force evaluation");
+    s.output("total", "kinetic plus potential energy");
+    return s;
   }
   EnergyCompute(Simulation&, const ParamValues&) {}
   void evaluate(Simulation& sim) override {
@@ -17,9 +25,6 @@ class EnergyCompute : public ComputeStyle {
     vals_["kinetic"] = sim.kinetic_energy();
     vals_["potential"] = sim.potential_energy();
     vals_["total"] = vals_["kinetic"] + vals_["potential"];
-  }
-  std::vector<std::string> value_keys() const override {
-    return {"kinetic", "stretch", "bend", "contact", "external", "potential", "total"};
   }
   double value(const std::string& key) const override {
     auto it = vals_.find(key);

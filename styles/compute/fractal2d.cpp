@@ -45,6 +45,9 @@ class Fractal2dCompute : public ComputeStyle {
     s.integer("centres", "largest number of centres").def(64.0).min(1);
     s.add("chains", ParamType::StringList, "chains to analyse (default: all)")
         .def(std::vector<std::string>{});
+    s.output("D", "fractal dimension: slope of log <M> against log rho, M averaged over centres");
+    s.output("D_err", "standard error of D from the spread of the per-centre slopes");
+    s.output("centres", "number of centres used (0 when no node is far enough inside)");
     return s;
   }
   Fractal2dCompute(Simulation& sim, const ParamValues& p)
@@ -128,7 +131,6 @@ class Fractal2dCompute : public ComputeStyle {
     D_err_ = nc > 1 ? std::sqrt(var / (nc - 1) / nc) : 0.0;
   }
 
-  std::vector<std::string> value_keys() const override { return {"D", "D_err", "centres"}; }
   double value(const std::string& key) const override {
     if (key == "D") return D_;
     if (key == "D_err") return D_err_;

@@ -17,6 +17,9 @@ class GyrationCompute : public ComputeStyle {
     s.real("inside", "only nodes closer than this to 'center' (default: all of the group)")
         .positive();
     s.vector("center", "centre for 'inside'").def(std::vector<double>{0, 0, 0}).length(2, 3);
+    s.output("rg", "mass-weighted radius of gyration of the selected nodes");
+    s.output("rg2", "squared radius of gyration");
+    s.output("nodes", "number of nodes selected (the group, within 'inside' of 'center' if given)");
     return s;
   }
   GyrationCompute(Simulation& sim, const ParamValues& p)
@@ -44,7 +47,6 @@ class GyrationCompute : public ComputeStyle {
     for (int i : sel) rg2_ += m[i] * (x[i] - rm).squaredNorm();
     rg2_ /= M;
   }
-  std::vector<std::string> value_keys() const override { return {"rg", "rg2", "nodes"}; }
   double value(const std::string& key) const override {
     if (key == "rg") return std::sqrt(rg2_);
     if (key == "rg2") return rg2_;

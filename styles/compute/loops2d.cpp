@@ -40,6 +40,13 @@ class Loops2dCompute : public ComputeStyle {
         .min(0.0);
     s.add("chains", ParamType::StringList, "chains to analyse (default: all)")
         .def(std::vector<std::string>{});
+    s.output("loops",
+             "number of loops: enclosed regions bounded by one contiguous stretch of wire");
+    s.output("holes",
+             "number of enclosed empty regions off the wall of at least min_area (loops included)");
+    s.output("loop_area", "total area of the loops");
+    s.output("mean_loop_length", "mean wire arclength around a loop (0 without loops)");
+    s.output("max_loop_length", "largest wire arclength around a loop");
     return s;
   }
   Loops2dCompute(Simulation& sim, const ParamValues& p)
@@ -66,9 +73,6 @@ class Loops2dCompute : public ComputeStyle {
     count(img, ranges);
   }
 
-  std::vector<std::string> value_keys() const override {
-    return {"loops", "holes", "loop_area", "mean_loop_length", "max_loop_length"};
-  }
   double value(const std::string& key) const override {
     if (key == "loops") return loops_;
     if (key == "holes") return holes_;

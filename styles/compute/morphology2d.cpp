@@ -24,6 +24,12 @@ class Morphology2dCompute : public ComputeStyle {
     s.vector("center", "cavity centre").def(std::vector<double>{0, 0}).length(2, 3);
     s.add("chains", ParamType::StringList, "chains to analyse (default: all)")
         .def(std::vector<std::string>{});
+    s.output("A", "sum of kappa^2 l0 over the hinges in the inner disc r < R / sqrt(2)");
+    s.output("B", "sum of kappa^2 l0 over the hinges in the outer ring of the cavity");
+    s.output("ratio", "A / B (1e300 when B = 0 < A)");
+    s.output("classic", "1 when A / B < 0.5 (classic morphology), else 0");
+    s.output("winding", "largest |winding| of either half of a wire inside the cavity, in turns");
+    s.output("net_winding", "|net winding| of the wire inside the cavity, in turns");
     return s;
   }
   Morphology2dCompute(Simulation& sim, const ParamValues& p)
@@ -58,9 +64,6 @@ class Morphology2dCompute : public ComputeStyle {
           std::max({winding_, std::abs(half[0]) / (2 * M_PI), std::abs(half[1]) / (2 * M_PI)});
     }
     net_ = std::abs(net) / (2 * M_PI);
-  }
-  std::vector<std::string> value_keys() const override {
-    return {"A", "B", "ratio", "classic", "winding", "net_winding"};
   }
   double value(const std::string& key) const override {
     if (key == "A") return A_;

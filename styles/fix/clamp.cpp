@@ -15,6 +15,9 @@ class ClampFix : public FixStyle {
     s.string("components", "position components to fix, any of x, y, z").def(std::string("xyz"));
     s.boolean("rotation", "also clamp the end-edge direction of chain ends in the group")
         .def(false);
+    s.output(
+        "count",
+        "number of nodes in the group (chain-end neighbours clamped for rotation not counted)");
     return s;
   }
   ClampFix(Context& sim, const ParamValues& p) {
@@ -66,7 +69,6 @@ class ClampFix : public FixStyle {
     if (auto* mask = sim.held_components_if_any())
       for (int i : clamped_) (*mask)[i] &= ~bits_;
   }
-  std::vector<std::string> value_keys() const override { return {"count"}; }
   double value(const std::string& key) const override {
     if (key == "count") return count_;
     return FixStyle::value(key);

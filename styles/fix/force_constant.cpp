@@ -14,6 +14,10 @@ class ConstantForceFix : public FixStyle {
     s.vector("rate", "d force / dt, for slow load ramps")
         .def(std::vector<double>{0, 0, 0})
         .length(2, 3);
+    s.output("fx", "x component of the force on each node at the last evaluation");
+    s.output("fy", "y component of the force on each node at the last evaluation");
+    s.output("fz", "z component of the force on each node at the last evaluation");
+    s.output("magnitude", "magnitude of the force on each node at the last evaluation");
     return s;
   }
   ConstantForceFix(Context& sim, const ParamValues& p)
@@ -75,7 +79,6 @@ class ConstantForceFix : public FixStyle {
     ref_.resize(r.size() / 3);
     for (size_t i = 0; i < ref_.size(); ++i) ref_[i] = Vec3(r[3 * i], r[3 * i + 1], r[3 * i + 2]);
   }
-  std::vector<std::string> value_keys() const override { return {"fx", "fy", "fz", "magnitude"}; }
   double value(const std::string& key) const override {
     if (key == "fx") return last_.x();
     if (key == "fy") return last_.y();

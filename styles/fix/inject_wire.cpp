@@ -11,7 +11,9 @@
 // `jam_growth` within a packing-density increase of `jam_dphi`; the run then ends
 // cleanly. The window is a time, not a count of steps, so that the criterion means
 // the same at every dt (and under an adaptive step).
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <limits>
 
@@ -81,6 +83,15 @@ class WireInjectionFix : public FixStyle {
            "wall exactly head-on")
         .def(0.0)
         .nonnegative();
+    s.output("force",
+             "injection force: axial force the feeder exerts on the channel nodes, summed over "
+             "channels");
+    s.output("force_avg", "injection force averaged over the last jam_time (time-weighted)");
+    s.output("phi",
+             "packing density: wire area (2D) or volume (3D) inside the cavity over the cavity's");
+    s.output("jammed", "1 once the run stopped on a jam, else 0");
+    s.output("injected", "wire length fed in since the start (rest lengths of the nodes added)");
+    s.output("nodes_inside", "number of wire nodes inside the cavity");
     return s;
   }
 
@@ -256,9 +267,17 @@ class WireInjectionFix : public FixStyle {
     }
   }
 
-  std::vector<std::string> value_keys() const override {
-    return {"force", "force_avg", "phi", "jammed", "injected", "nodes_inside"};
+  // toward max_phi when the deck set one (the jam itself cannot be foreseen)
+  double stop_progress(std::string* what) const override {
+    if (!(max_phi_ < 1.0)) return -1.0;
+    if (what) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%s.phi = %g", id().c_str(), max_phi_);
+      *what = buf;
+    }
+    return std::clamp(phi_ / max_phi_, 0.0, 1.0);
   }
+
   double value(const std::string& key) const override {
     if (key == "force") return force_;
     if (key == "force_avg") return avg_;

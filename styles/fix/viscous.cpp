@@ -10,6 +10,7 @@ class ViscousDampingFix : public FixStyle {
     ParamSpec s("fix", name, "viscous damping force -gamma v on every node of a group");
     s.real("gamma", "drag coefficient (force per velocity)").required().nonnegative();
     s.string("group", "node group").def(std::string("all"));
+    s.output("gamma", "drag coefficient gamma (force per velocity)");
     return s;
   }
   ViscousDampingFix(Context& sim, const ParamValues& p)
@@ -37,7 +38,6 @@ class ViscousDampingFix : public FixStyle {
     auto p = spec(style_name()).validate(raw);
     gamma_ = p.real("gamma");
   }
-  std::vector<std::string> value_keys() const override { return {"gamma"}; }
   double value(const std::string& key) const override {
     if (key == "gamma") return gamma_;
     return FixStyle::value(key);

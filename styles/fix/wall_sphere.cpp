@@ -39,6 +39,10 @@ class SphereWallFix : public FixStyle {
         .def(std::vector<double>{});
     s.real("opening_width", "width of each hole along the wall (default: the diameter)")
         .nonnegative();
+    s.output("force", "sum of the normal forces of the wall on the nodes");
+    s.output("contacts", "number of nodes touching the wall");
+    s.output("radius", "current wall radius R(t)");
+    s.output("omega", "contact frequency measured at the last evaluation, sqrt(max_i k_i / m_i)");
     return s;
   }
   SphereWallFix(Context& sim, const ParamValues& p)
@@ -155,9 +159,6 @@ class SphereWallFix : public FixStyle {
     return std::sqrt(k / mmin);
   }
   double measured_frequency() const override { return stiffness_.omega(); }
-  std::vector<std::string> value_keys() const override {
-    return {"force", "contacts", "radius", "omega"};
-  }
   double value(const std::string& key) const override {
     if (key == "omega") return stiffness_.omega();
     if (key == "radius") return r_;

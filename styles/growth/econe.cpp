@@ -21,6 +21,7 @@ class EconeGrowth : public GrowthStyle {
     s.vector("axis", "direction of the axis (the disc normal)")
         .def(std::vector<double>{0, 0, 1})
         .length(3, 3);
+    s.output("phi_e", "excess angle phi_e (radians)");
     return s;
   }
   EconeGrowth(Context&, const ParamValues& p) { read(p); }
@@ -47,7 +48,6 @@ class EconeGrowth : public GrowthStyle {
     read(spec(style_name()).validate(full));
     bump();
   }
-  std::vector<std::string> value_keys() const override { return {"phi_e"}; }
   double value(const std::string& key) const override {
     if (key == "phi_e") return phi_e_;
     return GrowthStyle::value(key);

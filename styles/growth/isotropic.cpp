@@ -13,6 +13,8 @@ class IsotropicGrowth : public GrowthStyle {
                 "(5.41))");
     s.real("factor", "constant growth factor; sim:modify can change it").def(1.0).positive();
     s.real("rate", "growth rate lambda (per time unit)").def(0.0);
+    s.output("factor", "constant growth factor");
+    s.output("rate", "growth rate (per time unit)");
     return s;
   }
   IsotropicGrowth(Context&, const ParamValues& p)
@@ -30,7 +32,6 @@ class IsotropicGrowth : public GrowthStyle {
     rate_ = p.real("rate");
     bump();
   }
-  std::vector<std::string> value_keys() const override { return {"factor", "rate"}; }
   double value(const std::string& key) const override {
     if (key == "factor") return factor_;
     if (key == "rate") return rate_;

@@ -29,6 +29,8 @@ class LbfgsMinimizer : public IntegratorStyle {
           "unlimited")
         .def(std::string("auto"))
         .positive();
+    s.output("restarts", "number of restarts from steepest descent after a failed line search");
+    s.output("evaluations", "number of force evaluations in the iterations");
     return s;
   }
   LbfgsMinimizer(Simulation&, const ParamValues& p)
@@ -140,7 +142,6 @@ class LbfgsMinimizer : public IntegratorStyle {
     sim.end_of_step();
   }
 
-  std::vector<std::string> value_keys() const override { return {"restarts", "evaluations"}; }
   double value(const std::string& key) const override {
     if (key == "restarts") return static_cast<double>(restarts_);
     if (key == "evaluations") return static_cast<double>(evaluations_);

@@ -42,6 +42,10 @@ class NewmarkIntegrator : public IntegratorStyle {
         .positive();
     s.real("dt_min", "smallest step the adaptive control may take").def(1e-12).positive();
     s.string("log", "file that records every change of dt with its reason");
+    s.output("rejected", "number of steps rejected by the adaptive control");
+    s.output("eta", "error estimate of the last step over the shortest edge (0 unless adaptive)");
+    s.output("dt_cap", "stable step of the stiff terms, the cap on the adaptive dt");
+    s.output("dt_next", "time step the next step takes");
     return s;
   }
   NewmarkIntegrator(Simulation&, const ParamValues& p)
@@ -140,9 +144,6 @@ class NewmarkIntegrator : public IntegratorStyle {
     }
   }
 
-  std::vector<std::string> value_keys() const override {
-    return {"rejected", "eta", "dt_cap", "dt_next"};
-  }
   double value(const std::string& key) const override {
     if (key == "rejected") return static_cast<double>(rejected_);
     if (key == "eta") return last_eta_;

@@ -42,6 +42,10 @@ class NodeEdgeContactPair : public PairStyle {
     s.integer("exclude", "skip edges within this many nodes along the same chain").def(2.0).min(0);
     s.add("chains", ParamType::StringList, "chains that touch each other (default: all)")
         .def(std::vector<std::string>{});
+    s.output("contacts", "number of node-edge contacts at the last evaluation");
+    s.output("pairs", "number of (node, edge) pairs in the pair list");
+    s.output("builds", "number of pair-list builds since the start");
+    s.output("omega", "contact frequency measured at the last evaluation, sqrt(max_i k_i / m_i)");
     return s;
   }
 
@@ -227,9 +231,6 @@ class NodeEdgeContactPair : public PairStyle {
   }
   std::string neighbor_structure() const override { return "linked cells + node-edge pair list"; }
   double measured_frequency() const override { return stiffness_.omega(); }
-  std::vector<std::string> value_keys() const override {
-    return {"contacts", "pairs", "builds", "omega"};
-  }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
     if (key == "omega") return stiffness_.omega();

@@ -41,6 +41,10 @@ class SegmentContactPair : public PairStyle {
         .min(0);
     s.add("chains", ParamType::StringList, "chains that touch each other (default: all)")
         .def(std::vector<std::string>{});
+    s.output("contacts", "number of segment pairs in contact at the last evaluation");
+    s.output("pairs", "number of edge pairs in the pair list");
+    s.output("builds", "number of pair-list builds since the start");
+    s.output("omega", "contact frequency measured at the last evaluation, sqrt(max_i k_i / m_i)");
     return s;
   }
 
@@ -162,9 +166,6 @@ class SegmentContactPair : public PairStyle {
   }
   std::string neighbor_structure() const override { return "linked cells + segment pair list"; }
   double measured_frequency() const override { return stiffness_.omega(); }
-  std::vector<std::string> value_keys() const override {
-    return {"contacts", "pairs", "builds", "omega"};
-  }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
     if (key == "omega") return stiffness_.omega();

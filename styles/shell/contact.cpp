@@ -78,6 +78,14 @@ class ShellContactPair : public PairStyle {
     s.real("slip_velocity", "slipping contacts slower than this stick again")
         .def(1e-4)
         .nonnegative();
+    s.output("contacts", "number of triangle pairs in contact at the last evaluation");
+    s.output("far_contacts",
+             "contacts of triangles farther apart than far_distance in the reference");
+    s.output("force", "sum of the magnitudes of the normal contact forces");
+    s.output("gamma",
+             "angle between the two contact planes (radians), -1 without two contact zones");
+    s.output("pairs", "number of triangle pairs in the pair list");
+    s.output("rebuilds", "number of pair-list rebuilds since the start");
     return s;
   }
   ShellContactPair(Context& sim, const ParamValues& p)
@@ -284,9 +292,6 @@ class ShellContactPair : public PairStyle {
   }
 
   std::string neighbor_structure() const override { return "voxels + triangle pair list"; }
-  std::vector<std::string> value_keys() const override {
-    return {"contacts", "far_contacts", "force", "gamma", "pairs", "rebuilds"};
-  }
   double value(const std::string& key) const override {
     if (key == "contacts") return contacts_;
     if (key == "far_contacts") return far_contacts_;

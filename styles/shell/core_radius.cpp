@@ -60,6 +60,11 @@ class CoreRadiusCompute : public ComputeStyle {
     s.real("ring_width", "width of the radial rings; 0: the shortest reference edge")
         .def(0.0)
         .nonnegative();
+    s.output("radius", "core radius R_C by the chosen criterion, as a reference radius");
+    s.output(
+        "level",
+        "energy: A of A ln(r / R_C); curvature: plateau of r |kappa|; stretching: peak of U_s");
+    s.output("rings", "number of non-empty rings in the profile (0 with criterion energy)");
     return s;
   }
   CoreRadiusCompute(Simulation& sim, const ParamValues& p)
@@ -122,7 +127,6 @@ class CoreRadiusCompute : public ComputeStyle {
     else
       from_peak();
   }
-  std::vector<std::string> value_keys() const override { return {"radius", "level", "rings"}; }
   double value(const std::string& key) const override {
     if (key == "radius") return radius_c_;
     // energy: A of A ln(r / R_C); curvature: the plateau of r |kappa|; stretching: the peak of U_s

@@ -79,6 +79,16 @@ class KoiterShell : public ShellStyle {
     s.vector("load", "uniform load q per reference area (2.32): f_I = q * integral of N_I")
         .def(std::vector<double>{0, 0, 0})
         .length(3, 3);
+    s.output("stretch", "stretching energy of the last force evaluation");
+    s.output("bend", "bending energy of the last force evaluation (ghost springs not included)");
+    s.output("energy", "stretching plus bending energy");
+    s.output("Eb_hat",
+             "mean bending density: integral of U_b over the current area, divided by that area");
+    s.output("area", "current area of the surface");
+    s.output("omega",
+             "highest angular frequency estimated by power iteration, for the stable step");
+    s.output("elements", "number of elements (real triangles)");
+    s.output("nodes", "number of real (non-ghost) control nodes");
     return s;
   }
 
@@ -151,9 +161,6 @@ class KoiterShell : public ShellStyle {
       omega_ = it->second[0];
   }
 
-  std::vector<std::string> value_keys() const override {
-    return {"stretch", "bend", "energy", "Eb_hat", "area", "omega", "elements", "nodes"};
-  }
   double value(const std::string& key) const override {
     if (key == "stretch") return stretch_;
     if (key == "bend") return bend_;

@@ -17,6 +17,12 @@ class LimitPointCompute : public ComputeStyle {
                 "reference point of a shell mesh");
     s.string("mesh", "surface created by sim:mesh").required();
     s.vector("point", "reference position").required().length(3, 3);
+    s.output("x", "x of the limit-surface point of the nearest control node");
+    s.output("y", "y of the limit-surface point of the nearest control node");
+    s.output("z", "z of the limit-surface point of the nearest control node");
+    s.output("ux", "x displacement of that limit-surface point from its reference position");
+    s.output("uy", "y displacement of that limit-surface point from its reference position");
+    s.output("uz", "z displacement of that limit-surface point from its reference position");
     return s;
   }
   LimitPointCompute(Simulation& sim, const ParamValues& p) {
@@ -38,7 +44,6 @@ class LimitPointCompute : public ComputeStyle {
     x_.setZero();
     for (auto& r : mask_) x_ += r.N * sim.nodes().x[base_ + r.node];
   }
-  std::vector<std::string> value_keys() const override { return {"x", "y", "z", "ux", "uy", "uz"}; }
   double value(const std::string& key) const override {
     if (key.size() == 1 && key[0] >= 'x' && key[0] <= 'z') return x_[key[0] - 'x'];
     if (key.size() == 2 && key[0] == 'u' && key[1] >= 'x' && key[1] <= 'z')

@@ -24,6 +24,12 @@ class RimModesCompute : public ComputeStyle {
     s.real("min_radius", "ignore group nodes closer to the axis (the inner edge of a ring)")
         .def(0.0)
         .nonnegative();
+    s.output("n", "number of wings: the mode n >= 2 of largest amplitude");
+    s.output("amplitude", "amplitude of mode n of the rim height");
+    s.output("a1", "amplitude of mode 1 of the rim height (a rigid tilt)");
+    s.output("a2", "amplitude of mode 2 of the rim height");
+    s.output("a3", "amplitude of mode 3 of the rim height");
+    s.output("a4", "amplitude of mode 4 of the rim height");
     return s;
   }
   RimModesCompute(Simulation& sim, const ParamValues& p)
@@ -66,9 +72,6 @@ class RimModesCompute : public ComputeStyle {
     n_ = 0;
     for (int k = 2; k <= m_ / 2; ++k)
       if (n_ == 0 || amp_[k] > amp_[n_]) n_ = k;
-  }
-  std::vector<std::string> value_keys() const override {
-    return {"n", "amplitude", "a1", "a2", "a3", "a4"};
   }
   double value(const std::string& key) const override {
     if (key == "n") return n_;

@@ -93,6 +93,49 @@ TEST(Bend2dBond, ClosedRingIsForceFreeWhenRegular) {
   EXPECT_LT(fd_force_error(sim), 1e-6);
 }
 
+TEST(BendStyles, NodeFieldsHoldEachHingesCurvatureAndEnergy) {
+  // an arc of radius 4 (12 nodes, chord l0 apart) then moved a little: each interior node
+  // holds zeta / l0 and its share of the energy, the ends 0; without node_fields nothing
+  // is allocated
+  for (const std::string style : {"bend2d", "bend2d/hysteresis"}) {
+    Simulation sim(2, 1);
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 12; ++i) pts.emplace_back(4 * std::cos(0.2 * i), 4 * std::sin(0.2 * i), 0);
+    sim.add_chain("arc", pts, 1.0, false);
+    RawParams p = P({{"k", 5.0}, {"node_fields", true}});
+    if (style != "bend2d") p["yield_curvature"] = 0.1;  // the arc (1/4) yields
+    sim.add_bond(style, p);
+    sim.nodes().x[5] += Vec3(0.03, -0.02, 0);
+    sim.compute_forces();
+    const auto& kappa = sim.nodes().find<double>("bend.curvature")->values();
+    const auto& energy = sim.nodes().find<double>("bend.energy")->values();
+    const double l0 = 2 * 4 * std::sin(0.1);
+    double sum = 0;
+    for (int i = 0; i < 12; ++i) {
+      if (i == 0 || i == 11) {
+        EXPECT_EQ(kappa[i], 0.0) << style;
+        EXPECT_EQ(energy[i], 0.0);
+        continue;
+      }
+      const Hinge2d g(sim.nodes().x[i - 1], sim.nodes().x[i], sim.nodes().x[i + 1]);
+      EXPECT_NEAR(kappa[i], g.zeta / l0, 1e-12) << style << " node " << i;
+      if (i < 4 || i > 6) {
+        EXPECT_NEAR(kappa[i], 0.2 / l0, 1e-12);  // undisturbed: nearly 1/4
+      }
+      EXPECT_GT(energy[i], 0.0);
+      sum += energy[i];
+    }
+    EXPECT_NEAR(sum, sim.energies().at("bend"), 1e-12 * sum) << style;
+    Simulation plain(2, 1);
+    plain.add_chain("arc", pts, 1.0, false);
+    p.erase("node_fields");
+    plain.add_bond(style, p);
+    plain.compute_forces();
+    EXPECT_FALSE(plain.nodes().has("bend.curvature"));
+    EXPECT_FALSE(plain.nodes().has("bend.energy"));
+  }
+}
+
 TEST(Bend2dBond, Needs2D) {
   Simulation sim(3, 1);
   sim.add_chain("w", wiggly_chain(3, 3, 1), 1.0, false);

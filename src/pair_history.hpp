@@ -1,9 +1,11 @@
 // Per-pair history (friction springs, the side a contact was made from) carried from
-// one pair list to the next. Pairs are matched by node ids, never by positions in the
-// edge list: a chain that grows at its front (injection) renumbers every edge, and
-// matching by edge number handed each contact's history to the neighbouring edge —
-// across a hairpin the remembered side then looked crossed and the "push back"
-// force blew the wire apart (2D crumpling, f = 50).
+// one pair list to the next: the one way every contact pair list keeps its history
+// (node-edge, segment-segment, shell triangle pairs; a wall's contact is one per node and
+// lives in a node property). Pairs are matched by node ids (triangle ids for shells),
+// never by positions in the edge list: a chain that grows at its front (injection) renumbers every
+// edge, and matching by edge number handed each contact's history to the neighbouring edge — across
+// a hairpin the remembered side then looked crossed and the "push back" force blew the wire apart
+// (2D crumpling, f = 50).
 #pragma once
 
 #include <cstdint>
@@ -13,8 +15,8 @@
 
 namespace slender {
 
-// A key of two node ids (unordered when `symmetric`).
-inline std::uint64_t node_pair_key(int a, int b, bool symmetric = false) {
+// A key of two ids, nodes or triangles (unordered when `symmetric`).
+inline std::uint64_t id_pair_key(int a, int b, bool symmetric = false) {
   if (symmetric && b < a) std::swap(a, b);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
          static_cast<std::uint32_t>(b);

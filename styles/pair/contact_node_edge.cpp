@@ -403,8 +403,8 @@ class NodeEdgeContactPair : public PairStyle {
     xi_.assign(list_.size(), Vec3::Zero());
     carry_pair_history_indexed(
         old_.size(), list_.size(),
-        [&](size_t k) { return node_pair_key(old_[k].node, old_[k].tail); },
-        [&](size_t k) { return node_pair_key(list_[k].node, list_[k].tail); },
+        [&](size_t k) { return id_pair_key(old_[k].node, old_[k].tail); },
+        [&](size_t k) { return id_pair_key(list_[k].node, list_[k].tail); },
         [&](size_t k) { return (old_[k].flags & (kActive | kStick)) || old_[k].side != 0; },
         [&](size_t from, size_t to) {
           list_[to].flags = static_cast<std::uint8_t>(old_[from].flags & (kActive | kStick));

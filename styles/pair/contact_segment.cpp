@@ -311,7 +311,7 @@ class SegmentContactPair : public PairStyle {
     // carry the friction history of pairs that stay listed, matched by the edges' tail
     // nodes (a chain fed at its front renumbers its edges)
     carry_pair_history(
-        old_, list_, [](const Entry& e) { return node_pair_key(e.t1, e.t2, true); },
+        old_, list_, [](const Entry& e) { return id_pair_key(e.t1, e.t2, true); },
         [](const Entry& e) { return e.st.active || e.st.stick; },
         [](const Entry& from, Entry& to) { to.st = from.st; });
     schedule_.built(sim);

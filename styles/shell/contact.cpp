@@ -22,6 +22,7 @@
 
 #include "contact_law.hpp"
 #include "context.hpp"
+#include "pair_history.hpp"
 #include "registry.hpp"
 #include "shell/triangle_distance.hpp"
 #include "shell/trimesh.hpp"
@@ -316,12 +317,11 @@ class ShellContactPair : public PairStyle {
     if (auto it = st.find("friction"); it != st.end())
       for (std::size_t k = 0; k + 5 < it->second.size(); k += 6) {
         const auto& v = it->second;
-        FrictionState fs;
-        fs.xi = Vec3(v[k + 2], v[k + 3], v[k + 4]);
-        fs.stick = v[k + 5] != 0;
-        fs.active = true;
-        restored_[(static_cast<std::uint64_t>(v[k]) << 32) | static_cast<std::uint32_t>(v[k + 1])] =
-            fs;
+        Candidate c{saved_index(v[k]), saved_index(v[k + 1]), false, 0.0, FrictionState{}};
+        c.friction.xi = Vec3(v[k + 2], v[k + 3], v[k + 4]);
+        c.friction.stick = v[k + 5] != 0;
+        c.friction.active = true;
+        restored_.push_back(c);
       }
     if (auto* m = load_measured(st, 3)) {
       contacts_ = static_cast<int>((*m)[0]);
@@ -332,6 +332,16 @@ class ShellContactPair : public PairStyle {
     pairs_.clear();
   }
 
+  std::string check_loaded(const Context&) const override {
+    for (std::size_t k = 0; k < restored_.size(); ++k) {
+      const Candidate& c = restored_[k];
+      if (c.t1 < 0 || c.t2 <= c.t1 || c.t2 >= mesh_->n_real_tris || !c.friction.xi.allFinite())
+        return "friction pair " + std::to_string(k + 1) + " (triangles " + std::to_string(c.t1) +
+               ", " + std::to_string(c.t2) + ") is not two triangles of mesh '" + mesh_name_ +
+               "' (" + std::to_string(mesh_->n_real_tris) + "), or holds NaN";
+    }
+    return "";
+  }
   const std::vector<double>* face_values(const std::string& key) const override {
     return key == "contact" ? &face_flag_ : nullptr;
   }
@@ -467,14 +477,10 @@ class ShellContactPair : public PairStyle {
     // a fixed order, so that forces sum the same way whenever the list was built (restarts
     // are bit-identical)
     std::sort(found.begin(), found.end());
-    // friction history survives the rebuild for pairs that stay in the list
-    std::unordered_map<std::uint64_t, FrictionState> history = std::move(restored_);
-    restored_.clear();
-    if (friction_.frictional())
-      for (auto& c : pairs_)
-        if (c.friction.active)
-          history[(static_cast<std::uint64_t>(c.t1) << 32) | static_cast<std::uint32_t>(c.t2)] =
-              c.friction;
+    // the old list (or the pairs a checkpoint restored) hands its friction history to the
+    // pairs that stay listed (src/pair_history.hpp)
+    std::vector<Candidate> old;
+    old.swap(restored_.empty() ? pairs_ : restored_);
     pairs_.clear();
     for (std::uint64_t id : found) {
       const int t1 = static_cast<int>(id >> 32), t2 = static_cast<int>(id & 0xffffffffu);
@@ -482,10 +488,12 @@ class ShellContactPair : public PairStyle {
       for (int a : T[t1])
         for (int b : T[t2]) dref = std::min(dref, (X[a] - X[b]).norm());
       if (dref == 0) continue;  // neighbours never collide
-      Candidate cand{t1, t2, dref <= near_, dref, FrictionState{}};
-      if (auto it = history.find(id); it != history.end()) cand.friction = it->second;
-      pairs_.push_back(cand);
+      pairs_.push_back(Candidate{t1, t2, dref <= near_, dref, FrictionState{}});
     }
+    carry_pair_history(
+        old, pairs_, [](const Candidate& c) { return id_pair_key(c.t1, c.t2); },
+        [](const Candidate& c) { return c.friction.active; },
+        [](const Candidate& from, Candidate& to) { to.friction = from.friction; });
   }
 
   std::string mesh_name_;
@@ -498,7 +506,7 @@ class ShellContactPair : public PairStyle {
   bool near_never_ = false;
   bool dense_all_ = false;
   std::vector<shell::FeatureMask> masks_;
-  std::unordered_map<std::uint64_t, FrictionState> restored_;  // from a checkpoint
+  std::vector<Candidate> restored_;  // the friction history a checkpoint holds
   std::vector<Candidate> pairs_;
   std::vector<Vec3> box_lo_, box_hi_;
   int handle_ = -1;  // this list's request to the neighbour service

@@ -350,6 +350,26 @@ TEST(ShellContact, FrictionHistoryRestartsBitIdentically) {
     std::remove("shell_friction_restart.h5");
   }
 }
+
+TEST(ShellContact, ADamagedFrictionHistoryIsRefusedNotIndexed) {
+  auto sim = plate_on_plate(3, 0.8 * 0.02, P({{"mu_static", 0.5}}));
+  Style* pair = sim->find_style("contact/shell");
+  ASSERT_NE(pair, nullptr);
+  const double nan = std::nan("");
+  for (const std::vector<double>& bad :
+       {std::vector<double>{0, 1e6, 0, 0, 0, 1}, std::vector<double>{-7, 2, 0, 0, 0, 1},
+        std::vector<double>{2, 1, 0, 0, 0, 1}, std::vector<double>{0.5, 2, 0, 0, 0, 1},
+        std::vector<double>{1, 2, nan, 0, 0, 1}}) {
+    StateMap st;
+    st["friction"] = bad;
+    pair->load_state(st);
+    EXPECT_NE(pair->check_loaded(sim->context()).find("friction pair 1"), std::string::npos);
+  }
+  StateMap good;
+  good["friction"] = {1, 2, 0.001, 0, 0, 1};
+  pair->load_state(good);
+  EXPECT_EQ(pair->check_loaded(sim->context()), "");
+}
 #endif
 
 #endif

@@ -38,6 +38,7 @@ rule all:
         f"{OUT}.csv",
         f"{OUT}.png",
         f"{OUT}_phi.png",
+        f"{OUT}_thumbnails.png",
 
 
 rule point:
@@ -46,14 +47,18 @@ rule point:
     params:
         variables=lambda w: {"f": config["f"], "s": config["s"], "yield": w.y, "mu": w.mu,
                              "seed": w.seed, "output": False,
-                             "checkpoint_every": config["checkpoint_every"], **config["vars"]},
+                             # the checkpoint dump also writes the state the run stops in:
+                             # the point's thumbnail
+                             "checkpoint_every": config["checkpoint_every"] or 10 ** 12,
+                             **config["vars"]},
     threads: config["threads"]
     resources:
         **POINT_RESOURCES,
     run:
         sweep.run_point(RUNNER, output[0], DECK, params.variables,
                         f"{RESULTS}/work/y{wildcards.y}_mu{wildcards.mu}_seed{wildcards.seed}",
-                        threads=threads, retry=config["retry_unstable"])
+                        threads=threads, retry=config["retry_unstable"],
+                        thumbnail=(output[0][:-len(".json")] + ".png", float(config["f"])))
 
 
 rule diagram:
@@ -63,5 +68,7 @@ rule diagram:
         f"{OUT}.csv",
         f"{OUT}.png",
         f"{OUT}_phi.png",
+        f"{OUT}_thumbnails.png",
     run:
-        studies.phase_diagram_outputs(sweep.load_records(input), OUT, YIELDS, MUS, float(config["f"]))
+        studies.phase_diagram_outputs(sweep.load_records(input), OUT, YIELDS, MUS, float(config["f"]),
+                                      thumbnails=os.path.dirname(POINT))

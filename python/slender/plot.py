@@ -195,3 +195,27 @@ def render(path, out, frame=-1, field=None, radius=None):
     if radius is not None:
         raise ValueError(f"{path}: a shell surface takes no radius")
     return render_surface(path, out, frame, field=field)
+
+
+def thumbnail(path, out, radius=None, size_in=1.6, dpi=100):
+    """A small picture of a run's final state (a checkpoint, or the last frame of a 2D
+    trajectory): the wire as thin lines inside the cavity circle of `radius`, no axes. For
+    the studies' grids of thumbnails (workflows/phase_diagram.smk)."""
+    if io.kind(path) == "checkpoint":
+        ck = io.read_checkpoint(path)
+        if ck.dimension != 2:
+            raise ValueError(f"{path}: thumbnails draw 2D wires")
+        chains = [ck.chain_positions(name) for name in ck.chains]
+        closed = [ck.chains[name][1] for name in ck.chains]
+    else:
+        with io.Trajectory(path) as t:
+            if t.dimension != 2:
+                raise ValueError(f"{path}: thumbnails draw 2D wires")
+            chains, closed = t.frame(-1), t.closed(-1)
+    fig = plt.figure(figsize=(size_in, size_in))
+    ax = fig.add_axes([0, 0, 1, 1])
+    wire2d(ax, chains, closed, radius=radius, linewidth=0.4)
+    ax.set_axis_off()
+    fig.savefig(out, dpi=dpi)
+    plt.close(fig)
+

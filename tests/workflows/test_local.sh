@@ -45,8 +45,12 @@ for r in rows:
     assert r["status"] == "ok" and 0.29 < float(r["phi"]) < 0.35 and int(r["steps"]) > 1000, r
     assert r["class"] in ("spiral", "classic", "plastic"), r
 assert sorted(float(r["yield"]) for r in rows) == [0, 0.04], rows
-for png in ("phase_diagram_f10.png", "phase_diagram_f10_phi.png"):
+for png in ("phase_diagram_f10.png", "phase_diagram_f10_phi.png", "phase_diagram_f10_thumbnails.png"):
     assert os.path.getsize(os.path.join(results, png)) > 1000, png
+# each point's final wire, drawn from the checkpoint its run wrote when it stopped
+for p in points:
+    assert json.load(open(p))["thumbnail"] == os.path.basename(p)[:-5] + ".png", p
+    assert os.path.getsize(p[:-5] + ".png") > 1000, p
 PY
 echo "phase diagram: 2 points, table and plots ($((SECONDS - t0)) s)"
 

@@ -45,11 +45,46 @@ def diagram_row(record):
     return row
 
 
-def phase_diagram_outputs(records, out, yields, mus, f):
-    """<out>.csv, and the script's <out>.png and <out>_phi.png."""
+def phase_diagram_outputs(records, out, yields, mus, f, thumbnails=None):
+    """<out>.csv, and the script's <out>.png and <out>_phi.png; with `thumbnails` (the
+    folder of the points' pictures) <out>_thumbnails.png, the final wire of each point."""
     rows = [diagram_row(r) for r in records]
     write_table(out + ".csv", phase_diagram.FIELDS, rows)
     phase_diagram.draw(rows, out, yields, mus, f)
+    if thumbnails is not None:
+        pictures = [os.path.join(thumbnails, r.get("thumbnail") or "") for r in records]
+        thumbnail_grid(rows, pictures, out + "_thumbnails.png", yields, mus, f)
+
+
+def thumbnail_grid(rows, pictures, out, yields, mus, f):
+    """The final wire of the lowest seed of every (yield, mu) point, yield along x and mu
+    along y as in the diagram, titled with its class and phi."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(len(mus), len(yields), figsize=(1.5 * len(yields) + 0.6, 1.6 * len(mus) + 0.5),
+                             squeeze=False)
+    for i, mu in enumerate(mus):
+        for j, y in enumerate(yields):
+            ax = axes[len(mus) - 1 - i][j]
+            ax.set_xticks([])
+            ax.set_yticks([])
+            here = [(int(r["seed"]), r, p) for r, p in zip(rows, pictures)
+                    if abs(float(r["yield"]) - y) < 1e-9 and abs(float(r["mu"]) - mu) < 1e-9]
+            if j == 0:
+                ax.set_ylabel(f"mu {mu:g}", fontsize=7)
+            if i == 0:
+                ax.set_xlabel(f"yield {y:g}", fontsize=7)
+            if not here:
+                continue
+            _, r, picture = min(here, key=lambda t: t[0])
+            if os.path.isfile(picture):
+                ax.imshow(plt.imread(picture))
+            ax.set_title(f"{r['class']} {float(r['phi']):.2f}", fontsize=7)
+    fig.suptitle(f"final wires, f = {f:g} (class, phi; lowest seed)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
 
 
 def packing_row(record):

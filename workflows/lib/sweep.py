@@ -94,8 +94,21 @@ class DeckRunner:
         return None
 
 
+def draw_thumbnail(runner, work, png, radius):
+    """png: the final state the run in work left (its checkpoint dump, written when the run
+    stopped), drawn small with slender.plot.thumbnail; False if there is none."""
+    checkpoint = newest_checkpoint(work)
+    if not checkpoint:
+        return False
+    if runner.python_dir not in sys.path:
+        sys.path.insert(0, runner.python_dir)
+    from slender import plot
+    plot.thumbnail(checkpoint, png, radius=radius)
+    return True
+
+
 def run_point(runner, output, deck, variables, work, threads=1, retry=None, resume=True,
-              keep_work=False, record_failures=False):
+              keep_work=False, record_failures=False, thumbnail=None):
     """Runs one point of a study and writes its record to output.
 
     retry: variables replacing some of `variables` for a second run (in work/retry) when
@@ -103,7 +116,8 @@ def run_point(runner, output, deck, variables, work, threads=1, retry=None, resu
     work by an earlier job (the decks' -v restart=FILE). A run that did not end by itself
     raises (the job fails and keeps its work folder, so a rerun continues it) unless
     record_failures. work is removed on success unless keep_work (the example decks'
-    plots)."""
+    plots). thumbnail = (png, radius): a small picture of the final state, from the
+    checkpoint the deck wrote when it stopped (2D decks)."""
     record = runner.run(deck, variables, work, resume, threads)
     if retry and unstable(record):
         first = record
@@ -113,6 +127,10 @@ def run_point(runner, output, deck, variables, work, threads=1, retry=None, resu
         raise RuntimeError(f"{deck} {variables}: {record['status']}: {record['error']} "
                            f"(its state stays in {work} for the next attempt)")
     os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
+    if thumbnail:
+        folder = os.path.join(work, "retry") if "retried_with" in record else work
+        record["thumbnail"] = os.path.basename(thumbnail[0]) if draw_thumbnail(
+            runner, folder, thumbnail[0], thumbnail[1]) else None
     with open(output, "w") as fh:
         json.dump(record, fh, indent=1)
     if keep_work:

@@ -9,6 +9,8 @@
 -- injection force averaged over 1000 reference steps (a time) exceeds 0.1 k1 l0 (§2.4);
 -- adaptive velocity Verlet (see below). The thesis' s is read as the feed speed (§2.6 (a)).
 local M = {}
+local here = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."
+local snapshot = dofile(here .. "/../../lib/snapshot.lua")
 
 -- Builds the scene; returns the simulation and what the report needs.
 function M.build(p)
@@ -107,9 +109,10 @@ function M.build(p)
   local th = cadence("thermo_every", slender.var("thermo_length", 0.5 * d))
   th.file, th.append, th.columns = name .. "_thermo.csv", restart ~= "", columns
   sim:thermo(th)
+  local traj
   if output then
     -- a restarted run writes a new trajectory file rather than replacing the first
-    local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
+    traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
     local dp = cadence("dump_every", slender.var("dump_length", 2 * d))
     dp.file, dp.fields = traj, { "position", "bend.plastic_curvature" }
     sim:dump("traj", "h5md", dp)
@@ -122,7 +125,7 @@ function M.build(p)
   end
   if restart ~= "" then sim:read_checkpoint(restart) end
   return sim, { name = name, f = f, s = s, yield = yield, mu = mu, seed = seed,
-                with_fractal = with_fractal }
+                with_fractal = with_fractal, traj = traj }
 end
 
 -- The RESULT line of a run that took `wall` seconds and `node_steps` node-steps.
@@ -151,6 +154,10 @@ function M.run(p)
   ctx.ended = ok and "stop" or "instability"
   M.report(sim, ctx, slender.clock() - t0, node_steps)
   if not ok then error(err, 0) end
+  -- the last frame as a picture, coloured by plastic curvature
+  if ctx.traj then
+    snapshot.render(ctx.traj, ctx.name .. ".png", { radius = ctx.f, field = "bend.plastic_curvature" })
+  end
   -- tests: -v check=true asserts that the run ended quasi-statically (a jam, not a burst)
   if slender.var("check", false) then
     assert(sim:value("ke") / sim:nnodes() < 0.1, "the run ended with kinetic energy " .. sim:value("ke"))

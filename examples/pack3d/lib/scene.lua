@@ -15,6 +15,8 @@
 -- transverse displacement of 0.01 a (-v perturb=): a perfectly straight feed hits the
 -- far wall exactly head-on and overshoots the Euler load (R = 10 stopped at phi = 0.015).
 local M = {}
+local here = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."
+local snapshot = dofile(here .. "/../../lib/snapshot.lua")
 
 function M.build(p)
   -- -v fast=1 (the example suite and the tests): R = 4 a unless given
@@ -112,9 +114,10 @@ function M.build(p)
   local th = cadence("thermo_every", slender.var("thermo_length", 0.5 * a))
   th.file, th.append, th.columns = name .. "_thermo.csv", restart ~= "", columns
   sim:thermo(th)
+  local traj
   if output then
     -- a restarted run writes a new trajectory file rather than replacing the first
-    local traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
+    traj = restart == "" and name .. ".h5" or string.format("%s_%d.h5", name, os.time())
     local dp = cadence("dump_every", slender.var("dump_length", 4 * a))
     dp.file, dp.fields = traj, { "position", "bend.energy" }
     sim:dump("traj", "h5md", dp)
@@ -127,7 +130,7 @@ function M.build(p)
     sim:dump("restart", "checkpoint", { file = name .. "_restart.h5", every = checkpoint_every })
   end
   if restart ~= "" then sim:read_checkpoint(restart) end
-  return sim, { name = name, R = R, YI = YI, seed = seed, mu_s = mu_s, speed = speed }
+  return sim, { name = name, R = R, YI = YI, seed = seed, mu_s = mu_s, speed = speed, traj = traj }
 end
 
 function M.run(p)
@@ -152,6 +155,8 @@ function M.run(p)
     -- rods with frames: the largest |t - d3| (docs/models.md §4.3 wants < 1e-2)
     misalignment = (pcall(sim.value, sim, "rod/cosserat.misalignment")) and
                    sim:value("rod/cosserat.misalignment") or 0 }
+  -- the last frame as a picture, coloured by bending energy
+  if ctx.traj then snapshot.render(ctx.traj, ctx.name .. ".png", { radius = R, field = "bend.energy" }) end
   return sim
 end
 

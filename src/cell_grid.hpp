@@ -43,7 +43,7 @@ class RebuildSchedule {
   }
   double builds() const { return builds_; }
   void save(StateMap& st) const { st["counters"] = {builds_, 0.0}; }
-  void load(const StateMap& st) { builds_ = st.at("counters")[0]; }
+  void load(const StateMap& st) { builds_ = saved_array(st, "counters", 1)[0]; }
 
  private:
   double skin_;

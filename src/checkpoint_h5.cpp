@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <tuple>
+#include <typeinfo>
 
 #include "context.hpp"
 #include "h5util.hpp"
@@ -47,12 +48,22 @@ void sync_path(const std::string& path, bool folder) {
   ::close(fd);
 }
 
-void load_style(hid_t parent, Style& s) {
+void load_style(hid_t parent, Style& s, const std::string& path) {
   if (!h5::exists(parent, group_name(s))) return;
   auto g = h5::open_group(parent, group_name(s));
+  const std::string who = "checkpoint '" + path + "': the state of " + s.family_name() + " '" +
+                          s.id() + "' (" + s.style_name() + ")";
   StateMap st;
-  for (auto& k : h5::children(g)) st[k] = h5::read_doubles(g, k);
-  s.load_state(st);
+  for (auto& k : h5::children(g)) {
+    st[k] = h5::read_doubles(g, k);
+    for (double v : st[k])
+      if (!std::isfinite(v)) throw InputError(who + ": array '" + k + "' holds NaN or inf");
+  }
+  try {
+    s.load_state(st);
+  } catch (const InputError& e) {
+    throw InputError(who + ": " + e.what());
+  }
 }
 }  // namespace
 
@@ -240,6 +251,11 @@ void Simulation::read_checkpoint_checked(const std::string& path) {
       throw bad("node property '" + name + "' has " + std::to_string(v.size()) + " values, " +
                 std::to_string(n * static_cast<std::size_t>(p->ncomp())) + " expected");
     if (!all_finite(v)) throw bad("node property '" + name + "' holds NaN or inf");
+    if (p->type() == typeid(int))  // flags and counters: a double past int would be UB to cast
+      for (double x : v)
+        if (x != std::trunc(x) || x < -2147483648.0 || x > 2147483647.0)
+          throw bad("node property '" + name + "' holds " + std::to_string(x) +
+                    " where integers are stored");
     prop_data.emplace_back(p, std::move(v));
   }
   for (auto& [name, p] : nodes_.properties())
@@ -276,7 +292,7 @@ void Simulation::read_checkpoint_checked(const std::string& path) {
     }
   }
   auto styles = h5::open_group(f, "styles");
-  for (Style* s : this->styles()) load_style(styles, *s);
+  for (Style* s : this->styles()) load_style(styles, *s, path);
   // the styles' own state refers to nodes and edges: each checks its indices
   for (Style* s : this->styles()) {
     const std::string problem = s->check_loaded(*context_);

@@ -4,6 +4,7 @@
 // Simulation. A style requests the node properties it needs at construction.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <string>
@@ -38,6 +39,27 @@ inline int saved_index(double d) {
   return d >= 0 && d < 2147483647.0 && d == static_cast<double>(static_cast<long long>(d))
              ? static_cast<int>(d)
              : -1;
+}
+
+// A saved array of a style's state holding at least n values; a checkpoint that lacks it or
+// holds fewer is refused (read_checkpoint names the file and the style), never indexed past
+// its end.
+inline const std::vector<double>& saved_array(const StateMap& st, const std::string& key,
+                                              std::size_t n = 0) {
+  auto it = st.find(key);
+  if (it == st.end()) throw InputError("its saved state lacks the array '" + key + "'");
+  if (it->second.size() < n)
+    throw InputError("its saved array '" + key + "' holds " + std::to_string(it->second.size()) +
+                     " values, at least " + std::to_string(n) + " expected");
+  return it->second;
+}
+// A count or flag read from a checkpoint, clamped into the type's range: the cast of a
+// damaged file's 1e20 would be undefined (the values are finite: read_checkpoint checks).
+inline int saved_int(double d) {
+  return static_cast<int>(std::clamp(d, -2147483648.0, 2147483647.0));
+}
+inline long saved_long(double d) {
+  return static_cast<long>(std::clamp(d, -9.2e18, 9.2e18));
 }
 
 class Style {

@@ -220,7 +220,7 @@ class BendHysteresisBond : public ChainBondStyle {
     st["energy"] = {dissipated_, recoverable_, recoverable0_};
   }
   void load_state(const StateMap& st) override {
-    auto& w = st.at("energy");
+    auto& w = saved_array(st, "energy", 3);
     dissipated_ = w[0];
     recoverable_ = w[1];
     recoverable0_ = w[2];

@@ -70,12 +70,12 @@ class ConstantForceFix : public FixStyle {
     st["ref"] = r;
   }
   void load_state(const StateMap& st) override {
-    t0_ = st.at("t0")[0];
-    auto& fo = st.at("force");
+    t0_ = saved_array(st, "t0", 1)[0];
+    auto& fo = saved_array(st, "force", 3);
     force_ = Vec3(fo[0], fo[1], fo[2]);
-    auto& ra = st.at("rate");
+    auto& ra = saved_array(st, "rate", 3);
     rate_ = Vec3(ra[0], ra[1], ra[2]);
-    auto& r = st.at("ref");
+    auto& r = saved_array(st, "ref");
     ref_.resize(r.size() / 3);
     for (size_t i = 0; i < ref_.size(); ++i) ref_[i] = Vec3(r[3 * i], r[3 * i + 1], r[3 * i + 2]);
   }

@@ -305,22 +305,22 @@ class WireInjectionFix : public FixStyle {
   }
   void load_state(const StateMap& st) override {
     if (st.count("anchors")) {
-      auto& a = st.at("anchors");
+      auto& a = saved_array(st, "anchors");
       for (size_t i = 0; i < channels_.size() && 3 * i + 2 < a.size(); ++i)
         channels_[i].anchor = Vec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
     } else {  // checkpoints of 2D runs before nozzles: the x coordinate on the axis
-      auto& ch = st.at("channels");
+      auto& ch = saved_array(st, "channels");
       for (size_t i = 0; i < channels_.size() && i < ch.size(); ++i)
         channels_[i].anchor = Vec3(ch[i], c_.y(), 0.0);
     }
-    auto& s = st.at("scalars");
+    auto& s = saved_array(st, "scalars");
     if (s.size() < 6)
       throw InputError("fix style 'inject/wire': the checkpoint's scalars hold " +
                        std::to_string(s.size()) + " values, at least 6 expected");
     force_ = s[0];
     avg_ = s[1];
     phi_ = s[2];
-    jammed_ = static_cast<int>(s[3]);
+    jammed_ = saved_int(s[3]);
     injected_ = s[4];
     sum_ = s[5];
     if (!st.count("force_window") || s.size() < 7)
@@ -329,10 +329,10 @@ class WireInjectionFix : public FixStyle {
           "window counted steps; it cannot be continued with the time-based jam_time");
     span_ = s[6];
     if (s.size() > 7) recount_in_ = s[7];
-    auto& h = st.at("force_window");
+    auto& h = saved_array(st, "force_window");
     history_.clear();
     for (size_t i = 0; i + 1 < h.size(); i += 2) history_.push_back({h[i], h[i + 1]});
-    auto& dr = st.at("driven");
+    auto& dr = saved_array(st, "driven");
     driven_.clear();
     bad_driven_ = false;
     for (double d : dr) {

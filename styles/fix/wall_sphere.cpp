@@ -171,10 +171,10 @@ class SphereWallFix : public FixStyle {
   }
   void load_state(const StateMap& st) override {
     if (auto* m = load_measured(st, 3)) {
-      total_ = (*m)[0], contacts_ = static_cast<int>((*m)[1]);
+      total_ = (*m)[0], contacts_ = saved_int((*m)[1]);
       stiffness_.set_omega((*m)[2]);
     } else if (auto* m2 = load_measured(st, 2)) {
-      total_ = (*m2)[0], contacts_ = static_cast<int>((*m2)[1]);
+      total_ = (*m2)[0], contacts_ = saved_int((*m2)[1]);
     }
   }
 

@@ -130,12 +130,12 @@ class FireIntegrator : public IntegratorStyle {
     st["fire"] = {initialized_ ? 1.0 : 0.0, h_, hmax_, alpha_, static_cast<double>(npos_), hmin_};
   }
   void load_state(const StateMap& st) override {
-    auto& g = st.at("fire");
+    auto& g = saved_array(st, "fire", 6);
     initialized_ = g[0] != 0.0;
     h_ = g[1];
     hmax_ = g[2];
     alpha_ = g[3];
-    npos_ = static_cast<long>(g[4]);
+    npos_ = saved_long(g[4]);
     hmin_ = g[5];
   }
 

@@ -185,10 +185,10 @@ class GearIntegrator : public IntegratorStyle {
     st["gear"] = {initialized_ ? 1.0 : 0.0, h_, static_cast<double>(epoch_)};
   }
   void load_state(const StateMap& st) override {
-    auto& g = st.at("gear");
+    auto& g = saved_array(st, "gear", 3);
     initialized_ = g[0] != 0.0;
     h_ = g[1];
-    epoch_ = static_cast<long>(g[2]);
+    epoch_ = saved_long(g[2]);
   }
 
  private:

@@ -268,7 +268,7 @@ class NodeEdgeContactPair : public PairStyle {
   void load_state(const StateMap& st) override {
     list_.clear();
     xi_.clear();
-    auto& h = st.at("history");
+    auto& h = saved_array(st, "history");
     for (size_t k = 0; k + 7 <= h.size(); k += 7) {
       Entry e;
       e.node = saved_index(h[k]);
@@ -280,10 +280,10 @@ class NodeEdgeContactPair : public PairStyle {
       xi_.emplace_back(h[k + 2], h[k + 3], 0);
     }
     if (auto* m = load_measured(st, 2)) {
-      contacts_ = static_cast<int>((*m)[0]);
+      contacts_ = saved_int((*m)[0]);
       stiffness_.set_omega((*m)[1]);
     } else if (auto* m1 = load_measured(st, 1)) {
-      contacts_ = static_cast<int>((*m1)[0]);
+      contacts_ = saved_int((*m1)[0]);
     }
     tails_from_ids_ = true;
     schedule_.load(st);

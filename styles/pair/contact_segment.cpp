@@ -196,7 +196,7 @@ class SegmentContactPair : public PairStyle {
   }
   void load_state(const StateMap& st) override {
     list_.clear();
-    auto& h = st.at("history");
+    auto& h = saved_array(st, "history");
     for (size_t k = 0; k + 7 <= h.size(); k += 7) {
       Entry e;
       e.e1 = saved_index(h[k]);
@@ -207,10 +207,10 @@ class SegmentContactPair : public PairStyle {
       list_.push_back(e);
     }
     if (auto* m = load_measured(st, 2)) {
-      contacts_ = static_cast<int>((*m)[0]);
+      contacts_ = saved_int((*m)[0]);
       stiffness_.set_omega((*m)[1]);
     } else if (auto* m1 = load_measured(st, 1)) {
-      contacts_ = static_cast<int>((*m1)[0]);
+      contacts_ = saved_int((*m1)[0]);
     }
     tails_from_ids_ = true;
     schedule_.load(st);

@@ -324,8 +324,8 @@ class ShellContactPair : public PairStyle {
         restored_.push_back(c);
       }
     if (auto* m = load_measured(st, 3)) {
-      contacts_ = static_cast<int>((*m)[0]);
-      far_contacts_ = static_cast<int>((*m)[1]);
+      contacts_ = saved_int((*m)[0]);
+      far_contacts_ = saved_int((*m)[1]);
       force_sum_ = (*m)[2];
     }
     need_build_ = true;  // rebuild the list (with this history) at the next evaluation

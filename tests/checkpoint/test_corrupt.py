@@ -94,7 +94,7 @@ def main():
                                                           f["styles/feed/scalars"][:2])),
                                    "scalars hold 2 values"),
             "missing style data": (edit(lambda f: f.__delitem__("styles/feed/driven")),
-                                   "lacks a dataset"),
+                                   "lacks the array 'driven'"),
             "empty energy": (edit(lambda f: replace(f, "state/energy/bend", np.zeros(0))),
                              "state/energy/bend"),
             # the stream is stored as one number per character

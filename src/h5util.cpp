@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -162,7 +163,10 @@ void write_string(hid_t parent, const std::string& name, const std::string& s) {
 std::string read_string(hid_t parent, const std::string& name) {
   auto bytes = read_doubles(parent, name);
   std::string s;
-  for (double b : bytes) s.push_back(static_cast<char>(b));
+  // one value per character; a value that is no character (a damaged file) reads as '?', so
+  // the caller's parse of the text fails with its own message (found by fuzzing)
+  for (double b : bytes)
+    s.push_back(b >= -128.0 && b <= 127.0 && b == std::trunc(b) ? static_cast<char>(b) : '?');
   return s;
 }
 

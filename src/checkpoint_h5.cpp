@@ -161,12 +161,12 @@ void Simulation::read_checkpoint_checked(const std::string& path) {
   if (sc.size() < 7 || !all_finite(sc))
     throw bad("dataset state/scalars must hold 7 finite numbers (step, time, dt, ...)");
   if (sc[0] < 0 || sc[0] != std::floor(sc[0]) || sc[0] > 9.007199254740992e15 || sc[2] < 0 ||
-      sc[6] != std::floor(sc[6]))
+      sc[6] != std::floor(sc[6]) || std::abs(sc[6]) > 9.007199254740992e15)
     throw bad("dataset state/scalars holds an impossible step " + num(sc[0]) + " or time step " +
               num(sc[2]));
-  if (static_cast<int>(sc[4]) != dim_)
-    throw InputError("checkpoint '" + path + "' is " + std::to_string(int(sc[4])) +
-                     "D, the scene is " + std::to_string(dim_) + "D");
+  if (sc[4] != static_cast<double>(dim_))
+    throw InputError("checkpoint '" + path + "' is " + num(sc[4]) + "D, the scene is " +
+                     std::to_string(dim_) + "D");
   // the chains must match both ways (checked before anything is read into the scene): a
   // chain of the file that the scene lacks would leave its nodes in the arrays without a
   // chain, orphans that no bond holds

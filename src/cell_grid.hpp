@@ -61,7 +61,7 @@ class CellGrid {
     cs_ = cell;
     dim_ = dim;
     for (int a = 0; a < 3; ++a)
-      n_[a] = a < dim ? std::clamp(static_cast<int>((hi[a] - lo[a]) / cell) + 1, 1, 1 << 14) : 1;
+      n_[a] = a < dim ? clamped_cell((hi[a] - lo[a]) / cell, (1 << 14) - 1) + 1 : 1;
     const std::size_t ncell = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
     start_.assign(ncell + 1, 0);
     item_cell_.resize(pos.size());
@@ -95,9 +95,16 @@ class CellGrid {
   }
 
  private:
+  // floor(v) within [0, top], clamped before the cast: a node flung far away (or a NaN the
+  // guard has yet to see, found by fuzzing) lands in a border cell, never in undefined
+  // behaviour
+  static int clamped_cell(double v, int top) {
+    if (!(v >= 0.0)) return 0;
+    return v >= static_cast<double>(top) ? top : static_cast<int>(v);
+  }
   void coords(const Vec3& p, int c[3]) const {
     for (int a = 0; a < 3; ++a)
-      c[a] = a < dim_ ? std::clamp(static_cast<int>((p[a] - lo_[a]) / cs_), 0, n_[a] - 1) : 0;
+      c[a] = a < dim_ ? clamped_cell((p[a] - lo_[a]) / cs_, n_[a] - 1) : 0;
   }
   int cell_index(const Vec3& p) const {
     int c[3];

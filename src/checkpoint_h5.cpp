@@ -48,6 +48,28 @@ void sync_path(const std::string& path, bool folder) {
   ::close(fd);
 }
 
+// The keys whose values differ between the parameters a checkpoint recorded for a style
+// and the deck's ("key = value" lines): "radius 10 in the checkpoint, 12 here".
+std::vector<std::string> changed_parameters(const std::string& saved, const std::string& now) {
+  auto parse = [](const std::string& text) {
+    std::map<std::string, std::string> m;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      const auto eq = line.find(" = ");
+      if (eq != std::string::npos) m[line.substr(0, eq)] = line.substr(eq + 3);
+    }
+    return m;
+  };
+  const auto a = parse(saved), b = parse(now);
+  std::vector<std::string> out;
+  for (auto& [key, value] : b) {
+    auto it = a.find(key);
+    if (it != a.end() && it->second != value)
+      out.push_back(key + " " + it->second + " in the checkpoint, " + value + " here");
+  }
+  return out;
+}
+
 void load_style(hid_t parent, Style& s, const std::string& path) {
   if (!h5::exists(parent, group_name(s))) return;
   auto g = h5::open_group(parent, group_name(s));
@@ -103,6 +125,10 @@ void Simulation::write_checkpoint(const std::string& path) {
     }
     auto styles = h5::create_group(f, "styles");
     for (Style* s : this->styles()) save_style(styles, *s);
+    // the deck's parameters of every style, so that a restart under other values is noticed
+    auto params = h5::create_group(f, "parameters");
+    for (Style* s : this->styles())
+      if (!s->parameters().empty()) h5::attr_string(params, group_name(*s), s->parameters());
     H5Fflush(f, H5F_SCOPE_GLOBAL);
   }
   // durable before it replaces the old one: the data on disk, then the rename in its folder
@@ -274,6 +300,21 @@ void Simulation::read_checkpoint_checked(const std::string& path) {
   {
     std::istringstream rng(h5::read_string(st, "rng"));
     if (!(rng >> rng_read)) throw bad("dataset state/rng is not a random-stream state");
+  }
+  // a deck that differs from the one that wrote the file (another cavity radius, friction):
+  // legitimate for some keys (a jamming threshold, the time step), so said, not refused
+  if (h5::exists(f, "parameters")) {
+    auto pg = h5::open_group(f, "parameters");
+    for (Style* s : this->styles()) {
+      if (s->parameters().empty() || H5Aexists(pg, group_name(*s).c_str()) <= 0) continue;
+      for (auto& change :
+           changed_parameters(h5::read_attr_string(pg, group_name(*s)), s->parameters()))
+        std::fprintf(stderr,
+                     "slender: warning: checkpoint '%s' was written with other parameters: %s "
+                     "'%s' (%s): %s\n",
+                     path.c_str(), s->family_name(), s->id().c_str(), s->style_name().c_str(),
+                     change.c_str());
+    }
   }
 
   // everything the core reads is checked: into the scene

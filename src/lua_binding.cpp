@@ -464,7 +464,9 @@ int l_modify(lua_State* L) {
   std::string id = str_arg(L, 2, "the style id");
   Style* s = sim.find_style(id);
   if (!s) throw InputError("modify: no style with id '" + id + "'");
-  s->modify(to_raw(L, 3));
+  const RawParams raw = to_raw(L, 3);
+  s->modify(raw);
+  s->note_modified(raw);
   sim.forces_valid = false;
   return 0;
 }

@@ -1,6 +1,8 @@
 #include "params.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace slender {
@@ -76,6 +78,28 @@ std::string value_text(const Value& v) {
 }
 
 }  // namespace
+
+std::string ParamValues::exact_text(const Value& v) {
+  if (auto d = std::get_if<double>(&v)) {
+    // the shortest of 15 or 17 digits that reads back to the same number
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.15g", *d);
+    if (std::strtod(buf, nullptr) != *d) std::snprintf(buf, sizeof buf, "%.17g", *d);
+    return buf;
+  }
+  if (auto vv = std::get_if<std::vector<double>>(&v)) {
+    std::string out = "{";
+    for (size_t i = 0; i < vv->size(); ++i) out += (i ? ", " : "") + exact_text((*vv)[i]);
+    return out + "}";
+  }
+  return value_text(v);
+}
+
+std::string ParamValues::text() const {
+  std::string out;
+  for (auto& [key, v] : values_) out += key + " = " + exact_text(v) + "\n";
+  return out;
+}
 
 std::string ParamDecl::range_text() const {
   std::string r;

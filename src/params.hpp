@@ -143,6 +143,11 @@ class ParamValues {
   std::vector<long> integers(const std::string& key) const;
   bool is_auto(const std::string& key) const;
   const std::map<std::string, Value>& all() const { return values_; }
+  // Every value, "key = value" per line in key order, numbers to the last digit: what a
+  // checkpoint records of the deck that wrote it.
+  std::string text() const;
+  // One value as text() writes it.
+  static std::string exact_text(const Value& v);
   const std::string& owner() const { return owner_; }
 
  private:

@@ -87,6 +87,7 @@ class Registry {
     ParamValues values = spec.validate(raw);
     auto obj = e->make(sim, values);
     obj->set_style_name(name);
+    obj->set_parameters(values.text());
     return obj;
   }
 

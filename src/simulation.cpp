@@ -24,6 +24,17 @@ std::vector<std::string> Style::value_keys() const {
 double Style::value(const std::string& key) const {
   throw InputError("'" + id() + "' (" + style_name() + ") has no value '" + key + "'");
 }
+void Style::note_modified(const RawParams& raw) {
+  std::map<std::string, std::string> lines;
+  std::istringstream in(parameters_);
+  for (std::string line; std::getline(in, line);) {
+    const auto eq = line.find(" = ");
+    if (eq != std::string::npos) lines[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  for (auto& [key, v] : raw) lines[key] = ParamValues::exact_text(v);
+  parameters_.clear();
+  for (auto& [key, text] : lines) parameters_ += key + " = " + text + "\n";
+}
 void Style::modify(const RawParams&) {
   throw InputError("'" + id() + "' (" + style_name() + ") cannot be modified between runs");
 }

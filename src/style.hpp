@@ -71,6 +71,12 @@ class Style {
   void set_style_name(const std::string& s) { style_name_ = s; }
   const std::string& id() const { return id_; }
   void set_id(const std::string& s) { id_ = s; }
+  // The validated parameters it was made with (ParamValues::text), updated by sim:modify;
+  // checkpoints record them, and a restart under other values is reported.
+  const std::string& parameters() const { return parameters_; }
+  void set_parameters(std::string text) { parameters_ = std::move(text); }
+  // sim:modify's new values into parameters(), key by key
+  void note_modified(const RawParams& raw);
 
   // The family this style belongs to ("bond", "pair", ...), for messages and summaries.
   virtual const char* family_name() const = 0;
@@ -121,7 +127,7 @@ class Style {
   virtual const std::vector<double>* face_values(const std::string&) const { return nullptr; }
 
  private:
-  std::string style_name_, id_;
+  std::string style_name_, id_, parameters_;
   StateMap kept_;
 };
 

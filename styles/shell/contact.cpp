@@ -449,7 +449,11 @@ class ShellContactPair : public PairStyle {
       extent = std::max(extent, (hi[t] - lo[t]).maxCoeff());
     }
     const double inv = 1.0 / extent;
-    auto cell = [&](double v) { return static_cast<long>(std::floor(v * inv)); };
+    // clamped before the cast (a node flung far, a NaN the guard has yet to see)
+    auto cell = [&](double v) {
+      const double c = std::floor(v * inv);
+      return c == c ? static_cast<long>(std::clamp(c, -1e15, 1e15)) : 0L;
+    };
     auto key = [](long i, long j, long k) {
       return (static_cast<std::uint64_t>(i & 0x1fffff) << 42) |
              (static_cast<std::uint64_t>(j & 0x1fffff) << 21) |

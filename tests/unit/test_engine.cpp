@@ -432,6 +432,39 @@ TEST(H5mdDump, ARunThatStopsWritesItsLastStateOffThePeriod) {
   std::remove((file + ".xdmf").c_str());
 }
 
+TEST(Checkpoint, ARestartUnderOtherParametersSaysWhichDiffer) {
+  // the checkpoint records every style's parameters; a deck that differs (a stiffer spring,
+  // a modified one) is told which values changed, and the same deck is told nothing
+  auto make = [](double k) {
+    auto s = std::make_unique<Simulation>(2, 9);
+    s->verbose = false;
+    s->add_chain("w", wiggly_chain(9, 2, 8, 0.2), 1.0, false);
+    s->add_bond("spring", P({{"k", k}}));
+    s->add_fix("drag", "damping/viscous", P({{"gamma", 0.1}}));
+    s->set_integrator("verlet", P({{"dt", 0.01}}));
+    return s;
+  };
+  auto a = make(200.0);
+  a->run(RunOptions{10, 0, {}});
+  a->write_checkpoint("test_ck_params.h5");
+  auto same = make(200.0);
+  testing::internal::CaptureStderr();
+  same->read_checkpoint("test_ck_params.h5");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  auto other = make(250.0);
+  other->find_style("drag")->note_modified(P({{"gamma", 0.3}}));  // as sim:modify records it
+  testing::internal::CaptureStderr();
+  other->read_checkpoint("test_ck_params.h5");
+  const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("bond 'spring' (spring): k 200 in the checkpoint, 250 here"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("fix 'drag' (damping/viscous): gamma 0.1 in the checkpoint, 0.3 here"),
+            std::string::npos)
+      << said;
+  std::remove("test_ck_params.h5");
+}
+
 TEST(Checkpoint, RestartIsBitIdenticalAndRejectsOtherScenes) {
   auto make = [] {
     auto s = std::make_unique<Simulation>(2, 9);

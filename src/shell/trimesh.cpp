@@ -161,7 +161,12 @@ TriMesh structured(int nu, int nv, bool periodic_v, const std::function<Vec3(int
 }  // namespace
 
 TriMesh make_ring(double r_in, double r_out, int n_r, int n_phi) {
-  if (!(r_in > 0 && r_out > r_in)) throw InputError("ring mesh: need 0 < r_in < r_out");
+  if (!(r_in > 0 && r_out > r_in)) {
+    std::ostringstream os;
+    os << "ring mesh: inner_radius (" << r_in << ") must be positive and smaller than radius ("
+       << r_out << "), the outer radius";
+    throw InputError(os.str());
+  }
   if (n_r < 1 || n_phi < 6) throw InputError("ring mesh: need n_r >= 1 and n_phi >= 6");
   return structured(n_r, n_phi, true, [&](int i, int j) {
     const double r = r_in + (r_out - r_in) * i / n_r, a = 2 * M_PI * j / n_phi;

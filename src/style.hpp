@@ -123,6 +123,9 @@ class Style {
   virtual double value(const std::string& key) const;
   // Changes parameters between runs (sim:modify). Default: not supported.
   virtual void modify(const RawParams& raw);
+  // Lines that draw the rigid body this style stands for (a wall) as it is now, for the
+  // trajectory dumps (the XDMF side file of the walls); none by default.
+  virtual std::vector<std::vector<Vec3>> outline() const { return {}; }
   // Per-element arrays (shell faces) this style offers to dumps, e.g. "Ub"; null if none.
   virtual const std::vector<double>* face_values(const std::string&) const { return nullptr; }
 

@@ -65,8 +65,8 @@ class H5mdDump : public DumpStyle {
     h5::attr_reference(h5::open_group(conn, "edges"), "particles_group", file_h_, "/particles/all");
     // the same chains as XDMF mixed-topology polylines, one per chain in chain order (closed
     // chains end on their first node): ParaView's Tube filter draws each wire as one tube
-    auto xdmf = h5::create_group(file_h_, "xdmf");
-    polylines_ = std::make_unique<h5::TimeSeries>(xdmf, "polylines", 1, true);
+    xdmf_group_ = h5::create_group(file_h_, "xdmf");
+    polylines_ = std::make_unique<h5::TimeSeries>(xdmf_group_, "polylines", 1, true);
   }
 
   void write(Simulation& sim) override {
@@ -96,6 +96,7 @@ class H5mdDump : public DumpStyle {
     }
     polylines_->append(sim.step, sim.time, pl.data(), pl.size());
     frames_.push_back({sim.time, N, e.size() / 2, lines, pl.size()});
+    write_walls(sim);
     H5Fflush(file_h_, H5F_SCOPE_GLOBAL);
     if (xdmf_) write_xdmf(sim);
   }
@@ -136,6 +137,58 @@ class H5mdDump : public DumpStyle {
       buf.resize(N * static_cast<size_t>(n.find_any(f)->ncomp()));
     }
     return buf;
+  }
+  // The walls as their styles draw them now (Style::outline), from the first frame that has
+  // one: /xdmf/wall_points and /xdmf/wall_polylines, and <file>.walls.xdmf for ParaView
+  // (a second file: the walls carry none of the nodes' fields).
+  void write_walls(Simulation& sim) {
+    std::vector<std::vector<Vec3>> lines;
+    for (const Style* st : sim.styles())
+      for (auto& l : st->outline()) lines.push_back(l);
+    if (!wall_points_ && lines.empty()) return;
+    if (!wall_points_) {
+      wall_points_ = std::make_unique<h5::TimeSeries>(xdmf_group_, "wall_points", dim_, false);
+      wall_lines_ = std::make_unique<h5::TimeSeries>(xdmf_group_, "wall_polylines", 1, true);
+    }
+    std::vector<double> pts, pl;
+    std::size_t n = 0;
+    for (auto& l : lines) {
+      pl.insert(pl.end(), {kXdmfPolyline, double(l.size())});
+      for (auto& p : l) {
+        for (int c = 0; c < dim_; ++c) pts.push_back(p[c]);
+        pl.push_back(double(n++));
+      }
+    }
+    wall_points_->append(sim.step, sim.time, pts.data(), n);
+    wall_lines_->append(sim.step, sim.time, pl.data(), pl.size());
+    wall_frames_.push_back({sim.time, n, 0, lines.size(), pl.size()});
+    if (xdmf_) write_walls_xdmf();
+  }
+  void write_walls_xdmf() {
+    const std::string path = file_ + ".walls.xdmf", tmp = path + ".tmp";
+    std::ofstream out(tmp);
+    out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
+        << "<Grid Name=\"walls\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    const long T = static_cast<long>(wall_frames_.size());
+    std::vector<double> times;
+    for (auto& fr : wall_frames_) times.push_back(fr.time);
+    const std::vector<double> shown = h5::xdmf_times(times);
+    for (long t = 0; t < T; ++t) {
+      auto& fr = wall_frames_[static_cast<size_t>(t)];
+      out << "<Grid Name=\"walls" << t << "\" GridType=\"Uniform\">\n<Time Value=\""
+          << shown[static_cast<size_t>(t)] << "\"/>\n";
+      out << "<Topology TopologyType=\"Mixed\" NumberOfElements=\"" << fr.lines << "\">\n"
+          << slab("/xdmf/wall_polylines/value", t, fr.line_values, 1, wall_lines_->capacity(), T,
+                  "Int")
+          << "</Topology>\n";
+      out << "<Geometry GeometryType=\"" << (dim_ == 2 ? "XY" : "XYZ") << "\">\n"
+          << slab("/xdmf/wall_points/value", t, fr.nodes, dim_, wall_points_->capacity(), T,
+                  "Float")
+          << "</Geometry>\n</Grid>\n";
+    }
+    out << "</Grid>\n</Domain>\n</Xdmf>\n";
+    out.close();
+    std::rename(tmp.c_str(), path.c_str());
   }
   std::string slab(const std::string& path, long t, size_t n, int nc, size_t cap, long frames,
                    const char* type) const {
@@ -185,10 +238,12 @@ class H5mdDump : public DumpStyle {
   std::vector<std::string> fields_;
   bool xdmf_;
   int dim_;
-  h5::Handle file_h_, all_;
+  h5::Handle file_h_, all_, xdmf_group_;
   std::vector<std::unique_ptr<h5::TimeSeries>> series_;
   std::unique_ptr<h5::TimeSeries> ids_, edges_, polylines_;
   std::unique_ptr<h5::ScalarSeries> count_;
+  std::unique_ptr<h5::TimeSeries> wall_points_, wall_lines_;
+  std::vector<Frame> wall_frames_;
   std::vector<Frame> frames_;
   std::vector<int> ncomps_;
 };

@@ -59,6 +59,7 @@ class SphereWallFix : public FixStyle {
         half_gap_(0.5 * (p.has("opening_width") ? p.real("opening_width") : p.real("diameter")) /
                   p.real("radius")) {
     sim.group(group_);
+    dim_ = sim.dimension();
     if (sim.dimension() == 2) c_.z() = 0.0;
     if (inside_ && r0_ <= 0.5 * d_)
       throw InputError("wall: radius " + fmt(r0_) +
@@ -211,6 +212,49 @@ class SphereWallFix : public FixStyle {
                        "\"); move the wire, or give the wall openings where it enters");
     }
   }
+  // 2D: the circle as it is now, broken at the openings; 3D: three great circles.
+  std::vector<std::vector<Vec3>> outline() const override {
+    constexpr int kPoints = 256;
+    std::vector<std::vector<Vec3>> lines;
+    auto at = [&](int k, int plane) -> Vec3 {
+      const double a = 2 * M_PI * k / kPoints, u = r_ * std::cos(a), w = r_ * std::sin(a);
+      Vec3 p = c_;
+      if (plane == 0) {
+        p.x() += u;
+        p.y() += w;
+      } else if (plane == 1) {
+        p.x() += u;
+        p.z() += w;
+      } else {
+        p.y() += u;
+        p.z() += w;
+      }
+      return p;
+    };
+    if (dim_ == 3) {
+      for (int plane = 0; plane < 3; ++plane) {
+        lines.emplace_back();
+        for (int k = 0; k <= kPoints; ++k) lines.back().push_back(at(k % kPoints, plane));
+      }
+      return lines;
+    }
+    // arcs between the openings, starting inside one (or anywhere if there is none)
+    int first = 0;
+    while (first < kPoints && !in_opening(at(first, 0) - c_)) ++first;
+    if (first == kPoints) first = 0;
+    std::vector<Vec3> arc;
+    for (int k = 0; k <= kPoints; ++k) {
+      const Vec3 p = at((first + k) % kPoints, 0);
+      if (in_opening(p - c_)) {
+        if (arc.size() > 1) lines.push_back(arc);
+        arc.clear();
+      } else {
+        arc.push_back(p);
+      }
+    }
+    if (arc.size() > 1) lines.push_back(arc);
+    return lines;
+  }
   // Holes in the wall, e.g. where injection channels enter the cavity.
   bool in_opening(const Vec3& rel) const {
     if (openings_.empty()) return false;
@@ -229,6 +273,7 @@ class SphereWallFix : public FixStyle {
   std::string group_;
   std::vector<double> openings_;
   double half_gap_;  // half the opening width, as an angle
+  int dim_ = 3;
   std::vector<int> nodes_;
   Property<Vec3>* xi_ = nullptr;
   Property<int>* state_ = nullptr;

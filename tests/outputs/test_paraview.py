@@ -3,7 +3,8 @@ python3-paraview), it writes the dumps of tests/outputs/dumps.lua with the slend
 given as argv[1] and reads each .xdmf with ParaView's XDMF Reader, as a user would open it.
 
 Checks: one polyline cell per chain with the chain's nodes in order (a closed chain ends on
-its first node), the node fields, increasing times (a shell's frames written after
+its first node), the node fields, the walls' own file (the circle's arcs between its
+openings, a sphere's three great circles), increasing times (a shell's frames written after
 minimisations, at one clock reading, are shown as frames 0, 1, ...), triangles for shells.
 Prints "paraview readers: ok"."""
 import os
@@ -54,6 +55,16 @@ def main():
             check(lines[1] == list(range(30, 38)), "the open wire is not in chain order")
             v = grid.GetPointData().GetArray("velocity")
             check(v is not None and v.GetNumberOfComponents() in (2, 3), "wire2d velocity field")
+        # the walls: two arcs of the circle of radius 8 (openings on the x axis), at each time
+        times, frames = read_frames(os.path.join(tmp, "wire2d.h5.walls.xdmf"))
+        check(times == [0.0, 0.05, 0.1], "walls times %s" % times)
+        for grid in frames:
+            arcs = cells(grid)
+            check(len(arcs) == 2 and all(len(a) > 100 for a in arcs), "wall arcs %s" % [len(a) for a in arcs])
+            p = grid.GetPoint(arcs[0][len(arcs[0]) // 2])
+            check(abs((p[0] ** 2 + p[1] ** 2) ** 0.5 - 8) < 1e-9, "wall point %s" % (p,))
+        times, frames = read_frames(os.path.join(tmp, "wire3d.h5.walls.xdmf"))
+        check([len(c) for c in cells(frames[-1])] == [257, 257, 257], "sphere's great circles")
         times, frames = read_frames(os.path.join(tmp, "wire3d.h5.xdmf"))
         check(len(times) == 3, "wire3d times %s" % times)
         lines = cells(frames[-1])

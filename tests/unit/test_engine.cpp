@@ -408,6 +408,53 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   std::remove((file + ".xdmf").c_str());
 }
 
+TEST(H5mdDump, WallsAreDrawnInTheirOwnXdmfFile) {
+  // a circular wall of radius 5 with two openings (on the x axis): two arcs on the circle,
+  // in /xdmf/wall_points and /xdmf/wall_polylines, described by <file>.walls.xdmf
+  const std::string file = "test_dump_walls.h5";
+  {
+    Simulation sim(2, 3);
+    sim.verbose = false;
+    sim.add_chain("w", wiggly_chain(7, 2, 3), 1.0, false);
+    sim.add_bond("spring", P({{"k", 50.0}}));
+    sim.add_fix("cavity", "wall/circle",
+                P({{"radius", 5.0},
+                   {"stiffness", 100.0},
+                   {"openings", std::vector<double>{0.0, M_PI}},
+                   {"opening_width", 1.0}}));
+    sim.set_integrator("verlet", P({{"dt", 0.01}}));
+    sim.add_dump("d", "h5md", P({{"file", file}, {"every", 10.0}}));
+    sim.run(RunOptions{20, 0, {}});
+  }
+  auto f = h5::open_file(file, false);
+  std::vector<hsize_t> pdims, ldims;
+  auto pts = h5::read_doubles(f, "xdmf/wall_points/value", &pdims);
+  auto lines = h5::read_doubles(f, "xdmf/wall_polylines/value", &ldims);
+  ASSERT_EQ(pdims.size(), 3u);
+  EXPECT_EQ(pdims[0], 3u);  // steps 0, 10, 20
+  EXPECT_EQ(pdims[2], 2u);
+  for (std::size_t k = 0; k < pdims[1]; ++k)
+    EXPECT_NEAR(std::hypot(pts[2 * k], pts[2 * k + 1]), 5.0, 1e-12);
+  // two polylines (cell type 2), neither touching the openings at angles 0 and pi
+  ASSERT_EQ(lines[0], 2.0);
+  const auto n1 = static_cast<std::size_t>(lines[1]);
+  ASSERT_EQ(lines[2 + n1], 2.0);
+  const auto n2 = static_cast<std::size_t>(lines[3 + n1]);
+  EXPECT_EQ(n1 + n2, pdims[1]);
+  EXPECT_GT(n1, 100u);
+  EXPECT_GT(n2, 100u);
+  for (std::size_t k = 0; k < pdims[1]; ++k)
+    EXPECT_GT(std::abs(pts[2 * k + 1]), 5.0 * std::sin(0.09)) << k;  // half the gap: 0.1 rad
+  std::ifstream x(file + ".walls.xdmf");
+  std::stringstream ss;
+  ss << x.rdbuf();
+  EXPECT_NE(ss.str().find("TopologyType=\"Mixed\" NumberOfElements=\"2\""), std::string::npos);
+  EXPECT_NE(ss.str().find("test_dump_walls.h5:/xdmf/wall_points/value"), std::string::npos);
+  std::remove(file.c_str());
+  std::remove((file + ".xdmf").c_str());
+  std::remove((file + ".walls.xdmf").c_str());
+}
+
 TEST(H5mdDump, ARunThatStopsWritesItsLastStateOffThePeriod) {
   // a jam (any request_stop) ends the run between two frames: the stopped state is
   // the run's result, so the trajectory gets it as its last frame

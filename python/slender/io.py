@@ -133,6 +133,26 @@ class Trajectory(_Series):
         """Whether each chain of frame i is a ring."""
         return self.chains(i)[1]
 
+    def walls(self, i):
+        """The walls of frame i as the dump drew them (/xdmf/wall_points, wall_polylines: a
+        circle broken at its openings, a sphere's three great circles), one point array per
+        line; [] for a scene without walls or a file written before they were."""
+        if "xdmf/wall_points" not in self.file or "xdmf/wall_polylines" not in self.file:
+            return []
+        step = self.steps[self._index(i)]
+        frames = np.asarray(self.file["xdmf/wall_points/step"][()])
+        k = np.flatnonzero(frames == step)
+        if len(k) == 0:
+            return []
+        points = np.asarray(self.file["xdmf/wall_points/value"][k[0]])
+        cells = np.asarray(self.file["xdmf/wall_polylines/value"][k[0]])[:, 0]
+        lines, at = [], 0
+        while at + 1 < len(cells) and cells[at] == 2:  # XDMF polyline: type, count, indices
+            n = int(cells[at + 1])
+            lines.append(points[cells[at + 2:at + 2 + n]])
+            at += 2 + n
+        return lines
+
 
 class Surface(_Series):
     """A shell surface dump: one triangle mesh, vertex positions per frame.

@@ -136,6 +136,7 @@ def render_trajectory(path, out, frame=-1, radius=None, field=None, dpi=110):
     bend.energy) if given. Returns the frame's step."""
     with io.Trajectory(path) as t:
         chains, closed = t.frame(frame), t.closed(frame)
+        walls = t.walls(frame)
         values = t.frame(frame, field) if field else None
         if values and values[0].ndim > 1 and values[0].shape[1] != 1:
             raise ValueError(f"{path}: {field} has {values[0].shape[1]} components; colours need one")
@@ -144,9 +145,17 @@ def render_trajectory(path, out, frame=-1, radius=None, field=None, dpi=110):
     if dim == 2:
         ax = fig.add_subplot(1, 1, 1)
         artist = wire2d(ax, chains, closed, values, radius=radius)
+        # the walls as the dump drew them (openings and all), where no radius was given
+        if radius is None and walls:
+            ax.add_collection(LineCollection([w[:, :2] for w in walls], colors="k", linewidths=1.2))
+            ax.autoscale()
+            ax.set_aspect("equal")
     else:
         ax = fig.add_subplot(1, 1, 1, projection="3d")
         artist = packing3d(ax, chains, closed, values, radius=radius)
+        if radius is None:
+            for w in walls:
+                ax.plot(w[:, 0], w[:, 1], w[:, 2], color="0.6", linewidth=0.6)
     if values is not None:
         fig.colorbar(artist, ax=ax, shrink=0.7, label=field)
     ax.set_title(f"{sum(len(c) for c in chains)} nodes, step {step}, t = {time:.6g}", fontsize=9)

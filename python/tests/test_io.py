@@ -121,6 +121,18 @@ def test_a_growing_trajectory_follows_h5md(request, fixture):
         assert isinstance(ref, h5py.Reference) and f[ref].name == "/particles/all"
 
 
+def test_the_walls_read_back_as_drawn(crumple_run, chains_run):
+    """The crumpling deck's cavity (radius f = 10; its channel nodes are held, so the wall
+    has no openings): one closed circle at every frame; a scene without walls has none."""
+    with io.Trajectory(os.path.join(crumple_run.run_dir, "classic.h5")) as t:
+        for i in (0, -1):
+            (wall,) = t.walls(i)
+            assert len(wall) > 100 and np.array_equal(wall[0], wall[-1])
+            np.testing.assert_allclose(np.linalg.norm(wall[:, :2], axis=1), 10.0, rtol=1e-12)
+    with io.Trajectory(os.path.join(chains_run.run_dir, "chains2d.h5")) as t:
+        assert t.walls(0) == []
+
+
 def test_shell_surface_frames(plate_run):
     r = plate_run.result
     with io.Surface(os.path.join(plate_run.run_dir, "plate.h5")) as s:

@@ -64,7 +64,7 @@ class H5mdDump : public DumpStyle {
     edges_ = std::make_unique<h5::TimeSeries>(conn, "edges", 2, true);
     h5::attr_reference(h5::open_group(conn, "edges"), "particles_group", file_h_, "/particles/all");
     // the same chains as XDMF mixed-topology polylines, one per chain in chain order (closed
-    // chains end on their first node): ParaView's Tube filter draws each wire as one tube
+    // chains end on their first node): ParaView's Extract Surface + Tube draw each wire as a tube
     xdmf_group_ = h5::create_group(file_h_, "xdmf");
     polylines_ = std::make_unique<h5::TimeSeries>(xdmf_group_, "polylines", 1, true);
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "context.hpp"
@@ -60,8 +61,26 @@ class CellGrid {
     lo_ = lo;
     cs_ = cell;
     dim_ = dim;
-    for (int a = 0; a < 3; ++a)
-      n_[a] = a < dim ? clamped_cell((hi[a] - lo[a]) / cell, (1 << 14) - 1) + 1 : 1;
+    // at most a few cells per item: one node flung far away (a divergence the guard has yet
+    // to see) must not make the grid allocate gigabytes (found by fuzzing). A scene wider
+    // than that gets larger cells; an infinite extent, the cells a cube root of the cap
+    // allows (items beyond the last cell fall into it: points within a cell size of each
+    // other still lie in neighbouring cells, so the search stays correct)
+    const double cap = std::max(1048576.0, 8.0 * static_cast<double>(pos.size()));
+    const int per_axis = std::max(1, static_cast<int>(std::pow(cap, 1.0 / dim)));
+    auto count = [&](int a, int top) {
+      const double e = (hi[a] - lo[a]) / cs_;
+      return std::isfinite(e) ? clamped_cell(e, top - 1) + 1 : per_axis;
+    };
+    auto cells = [&](int top) {
+      for (int a = 0; a < 3; ++a) n_[a] = a < dim ? count(a, top) : 1;
+      return static_cast<double>(n_[0]) * n_[1] * n_[2];
+    };
+    const double total = cells(1 << 14);
+    if (total > cap) {
+      cs_ *= 1.0001 * std::pow(total / cap, 1.0 / dim);
+      if (cells(1 << 14) > cap) cells(per_axis);
+    }
     const std::size_t ncell = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
     start_.assign(ncell + 1, 0);
     item_cell_.resize(pos.size());

@@ -14,7 +14,13 @@ void Simulation::fail(const std::string& what, long bad_step) {
   os << "instability at step " << bad_step << " (t = " << time << "): " << what << ".";
   std::string who;
   double w = omega_max(&who);
-  if (w > 0) {
+  if (!std::isfinite(w)) {
+    // no step is stable: a term's frequency is infinite (a node of zero or vanishing mass,
+    // a non-finite stiffness), so advice about dt would be wrong (found by fuzzing)
+    os << " No time step is stable: the highest frequency of " << who
+       << " is not finite (a node of zero or vanishing mass, or a non-finite stiffness "
+          "or state): look at the masses and the stiffnesses the deck or checkpoint gives.";
+  } else if (w > 0) {
     double limit = suggest_dt(1.0);
     if (dt > limit)
       os << " The time step dt = " << dt << " is above the stable limit " << limit

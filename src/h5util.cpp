@@ -104,28 +104,27 @@ std::vector<std::string> children(hid_t group) {
   return out;
 }
 
-void write_doubles(hid_t parent, const std::string& name, const std::vector<double>& data,
-                   std::vector<hsize_t> dims) {
+namespace {
+// A dataset of `dims` holding `data` (null: left empty) of the native type `type`.
+void write_dataset(hid_t parent, const std::string& name, hid_t type, const void* data,
+                   const std::vector<hsize_t>& dims) {
   Handle space = checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                          H5Sclose, "dataspace");
-  Handle ds = checked(H5Dcreate2(parent, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT,
-                                 H5P_DEFAULT, H5P_DEFAULT),
-                      H5Dclose, "cannot create dataset " + name);
-  if (!data.empty())
-    check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-          "write " + name);
+  Handle ds =
+      checked(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+              H5Dclose, "cannot create dataset " + name);
+  if (data) check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+}
+}  // namespace
+
+void write_doubles(hid_t parent, const std::string& name, const std::vector<double>& data,
+                   std::vector<hsize_t> dims) {
+  write_dataset(parent, name, H5T_NATIVE_DOUBLE, data.empty() ? nullptr : data.data(), dims);
 }
 
 void write_ints(hid_t parent, const std::string& name, const std::vector<int>& data,
                 std::vector<hsize_t> dims) {
-  Handle space = checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
-                         H5Sclose, "dataspace");
-  Handle ds = checked(H5Dcreate2(parent, name.c_str(), H5T_NATIVE_INT, space, H5P_DEFAULT,
-                                 H5P_DEFAULT, H5P_DEFAULT),
-                      H5Dclose, "cannot create dataset " + name);
-  if (!data.empty())
-    check(H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-          "write " + name);
+  write_dataset(parent, name, H5T_NATIVE_INT, data.empty() ? nullptr : data.data(), dims);
 }
 
 std::vector<double> xdmf_times(const std::vector<double>& times) {

@@ -322,8 +322,8 @@ TriMesh parse_mesh(std::istream& in, const std::string& format, const std::strin
       std::vector<long> ids(3);
       if (!next(s) || !(s >> k) || k != 3 || !(s >> ids[0] >> ids[1] >> ids[2]))
         bad(name, ln,
-            "only triangles ('3 a b c') are supported (the header announces " +
-                std::to_string(nf) + " faces)");
+            "only triangles ('3 a b c') are supported (the header announces " + std::to_string(nf) +
+                " faces)");
       add_face(ids, 0);
     }
     if (next(s))
@@ -339,8 +339,7 @@ TriMesh parse_mesh(std::istream& in, const std::string& format, const std::strin
   for (const Tri& t : m.tri)
     for (int k : t) used[static_cast<std::size_t>(k)] = 1;
   for (std::size_t i = 0; i < used.size(); ++i)
-    if (!used[i])
-      bad(name, vertex_line[i], "this vertex belongs to no triangle: remove it");
+    if (!used[i]) bad(name, vertex_line[i], "this vertex belongs to no triangle: remove it");
   // two vertices at one position leave a slit between the triangles on either side
   std::vector<int> order(m.x.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);

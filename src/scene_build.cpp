@@ -181,37 +181,58 @@ std::pair<int, int> add_mesh(Simulation& sim, const RawParams& raw) {
                        " refinements, at most " + std::to_string(most) +
                        " are made (edge >= " + std::to_string(size / std::pow(2.0, most)) + ")");
   };
-  auto check_cells = [&](double cells, const char* what) {
-    if (cells > 2e7)
-      throw InputError("mesh: edge = " + std::to_string(p.real("edge")) + " gives a " + what +
-                       " of about " + std::to_string(cells) +
-                       " triangles (at most 2e7): choose a larger edge");
+  // Triangles after the extra refinements: each global one makes four of a triangle, and a
+  // disc's core refinement adds about four times the core's share per level (each level
+  // refines half the radius of the one before). A count past 2e7 is refused before any
+  // memory is taken, naming the keys that lead to it.
+  const double grow = std::pow(4.0, static_cast<double>(p.integer("refine"))) *
+                      (p.has("shape") && p.str("shape") == "disc" && p.real("refine_center") > 0
+                           ? 1.0 + 4.0 * static_cast<double>(p.integer("refine_levels")) *
+                                       std::min(1.0, std::pow(p.real("refine_center") / R, 2))
+                           : 1.0);
+  auto check_cells = [&](double base, const char* what) {
+    const double cells = base * grow;
+    if (cells > 2e7) {
+      std::string keys = p.has("edge") ? "edge = " + std::to_string(p.real("edge")) : "";
+      auto add = [&](const std::string& k) { keys += (keys.empty() ? "" : ", ") + k; };
+      if (p.integer("refine") > 0) add("refine = " + std::to_string(p.integer("refine")));
+      if (grow > std::pow(4.0, static_cast<double>(p.integer("refine"))))
+        add("refine_levels = " + std::to_string(p.integer("refine_levels")) +
+            " within refine_center = " + std::to_string(p.real("refine_center")));
+      throw InputError("mesh: " + (keys.empty() ? std::string("the defaults") : keys) + " give a " +
+                       what + " of about " + std::to_string(cells) +
+                       " triangles (at most 2e7): choose a larger edge or fewer refinements");
+    }
   };
   if (p.has("file")) {
     m = shell::read_mesh(p.str("file"));
+    check_cells(static_cast<double>(m.tri.size()), "mesh");
   } else if (p.str("shape") == "disc") {
     if (p.has("edge")) check_levels(levels(R, p.real("edge")), 9, R, "disc");
-    m = shell::make_disc(R, p.has("edge") ? levels(R, p.real("edge")) : 5, p.real("refine_center"),
+    const int L = p.has("edge") ? levels(R, p.real("edge")) : 5;
+    check_cells(6.0 * std::pow(4.0, L), "disc");
+    m = shell::make_disc(R, L, p.real("refine_center"),
                          static_cast<int>(p.integer("refine_levels")));
   } else if (p.str("shape") == "ring") {
     if (!p.has("inner_radius")) throw InputError("mesh: a ring needs inner_radius");
     const double ri = p.real("inner_radius");
     const double e = p.has("edge") ? p.real("edge") : R / 16;
-    if (p.has("edge"))
-      check_cells(2.0 * std::ceil((R - ri) / e) * std::ceil(2 * M_PI * R / e), "ring");
+    check_cells(2.0 * std::ceil((R - ri) / e) * std::ceil(2 * M_PI * R / e), "ring");
     m = shell::make_ring(ri, R, std::max(1, static_cast<int>(std::ceil((R - ri) / e))),
                          std::max(6, static_cast<int>(std::ceil(2 * M_PI * R / e))));
   } else if (p.str("shape") == "rectangle") {
     if (!p.has("size")) throw InputError("mesh: a rectangle needs size = {lx, ly}");
     auto sz = p.vec("size");
     const double e = p.has("edge") ? p.real("edge") : std::min(sz[0], sz[1]) / 8;
-    if (p.has("edge")) check_cells(2.0 * std::ceil(sz[0] / e) * std::ceil(sz[1] / e), "rectangle");
+    check_cells(2.0 * std::ceil(sz[0] / e) * std::ceil(sz[1] / e), "rectangle");
     m = shell::make_rectangle(sz[0], sz[1], std::max(2, static_cast<int>(std::ceil(sz[0] / e))),
                               std::max(2, static_cast<int>(std::ceil(sz[1] / e))));
   } else {
     if (p.has("edge"))
       check_levels(std::max(1, levels(1.05 * R, p.real("edge"))), 8, 1.05 * R, "sphere");
-    m = shell::make_sphere(R, p.has("edge") ? std::max(1, levels(1.05 * R, p.real("edge"))) : 3);
+    const int L = p.has("edge") ? std::max(1, levels(1.05 * R, p.real("edge"))) : 3;
+    check_cells(20.0 * std::pow(4.0, L), "sphere");
+    m = shell::make_sphere(R, L);
   }
   for (long r = 0; r < p.integer("refine"); ++r) {
     shell::refine(m);

@@ -41,8 +41,8 @@ class Fractal2dCompute : public ComputeStyle {
     s.real("pixel", "pixel size in units of d").def(0.25).positive();
     s.real("rho_min", "smallest sandbox radius, in units of d").def(2.0).positive();
     s.real("rho_max", "largest sandbox radius, as a fraction of r").def(0.3).positive().max(1.0);
-    s.integer("radii", "number of log-spaced radii").def(12.0).min(3);
-    s.integer("centres", "largest number of centres").def(64.0).min(1);
+    s.integer("radii", "number of log-spaced radii").def(12.0).min(3).max(1000);
+    s.integer("centres", "largest number of centres").def(64.0).min(1).max(1000000);
     s.add("chains", ParamType::StringList, "chains to analyse (default: all)")
         .def(std::vector<std::string>{});
     s.output("D", "fractal dimension: slope of log <M> against log rho, M averaged over centres");

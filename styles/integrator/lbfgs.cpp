@@ -22,7 +22,7 @@ class LbfgsMinimizer : public IntegratorStyle {
                 "sim:minimize{method = \"lbfgs\"}); nodes stay at rest, so dashpots vanish and "
                 "friction springs keep their force; scenes with rod frames need \"fire\"");
     declare_time_step(s, "scene time step kept for the fixes (the minimiser does not use it)");
-    s.integer("memory", "number of position/force-change pairs kept").def(10.0).min(1);
+    s.integer("memory", "number of position/force-change pairs kept").def(10.0).min(1).max(100000);
     s.add("max_move", ParamType::RealOrAuto,
           "largest displacement of a node per iteration (length); set it below the contact "
           "distance in scenes with contact, so that no step jumps through a contact. \"auto\": "

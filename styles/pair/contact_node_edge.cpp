@@ -39,7 +39,10 @@ class NodeEdgeContactPair : public PairStyle {
         .positive();
     ContactLaw::declare(s);
     RebuildSchedule::declare(s, "pair-list skin: pairs closer than d + skin are listed");
-    s.integer("exclude", "skip edges within this many nodes along the same chain").def(2.0).min(0);
+    s.integer("exclude", "skip edges within this many nodes along the same chain")
+        .def(2.0)
+        .min(0)
+        .max(1000000);
     s.add("chains", ParamType::StringList, "chains that touch each other (default: all)")
         .def(std::vector<std::string>{});
     s.output("contacts", "number of node-edge contacts at the last evaluation");

@@ -38,7 +38,8 @@ class SegmentContactPair : public PairStyle {
     s.integer("exclude",
               "skip edge pairs within this many edges along the same chain (default ceil(2a / "
               "l0) + 1)")
-        .min(0);
+        .min(0)
+        .max(1000000);
     s.add("chains", ParamType::StringList, "chains that touch each other (default: all)")
         .def(std::vector<std::string>{});
     s.output("contacts", "number of segment pairs in contact at the last evaluation");
@@ -64,8 +65,15 @@ class SegmentContactPair : public PairStyle {
     }
     auto chains = select_chains(sim, names_);
     const double l0 = chains.empty() ? 2.0 * a_ : min_rest(chains);
-    exclude_ = p.has("exclude") ? static_cast<int>(p.integer("exclude"))
-                                : static_cast<int>(std::ceil(2.0 * a_ / l0)) + 1;
+    // a radius of a million rest lengths or more would exclude every pair of any wire that
+    // fits in memory (and overflow the count): a deck error, not a contact (fuzz finding)
+    const double along = std::ceil(2.0 * a_ / l0) + 1.0;
+    if (!p.has("exclude") && !(along <= 1e6))
+      throw InputError("pair style 'contact/segment': radius = " + std::to_string(a_) + " is " +
+                       std::to_string(a_ / l0) + " rest lengths (l0 = " + std::to_string(l0) +
+                       "): contacts within 2 radii along a chain are skipped, so no pair would "
+                       "be left; the radius must be a fraction of the wire's length");
+    exclude_ = p.has("exclude") ? static_cast<int>(p.integer("exclude")) : static_cast<int>(along);
     // defaults as in 2D with k_c -> E* of two rest edges (§5.1): k_st = k / 10
     nominal_k_ = has_y ? estar_per_length_ * 2.0 * l0 : law_.stiffness;
     if (!p.has("stick_stiffness")) law_.stick_stiffness = 0.1 * nominal_k_;

@@ -20,7 +20,10 @@ class RimModesCompute : public ComputeStyle {
                 "Fourier modes of the rim height of a disc (FFTW): the number of wings n");
     s.string("group", "rim nodes, e.g. disc.boundary").required();
     s.vector("center", "disc centre").def(std::vector<double>{0, 0, 0}).length(3, 3);
-    s.integer("samples", "equally spaced angles of the resampled rim").def(256.0).min(8);
+    s.integer("samples", "equally spaced angles of the resampled rim")
+        .def(256.0)
+        .min(8)
+        .max(10000000);
     s.real("min_radius", "ignore group nodes closer to the axis (the inner edge of a ring)")
         .def(0.0)
         .nonnegative();

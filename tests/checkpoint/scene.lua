@@ -1,6 +1,7 @@
 -- A small crumpling scene (injection, node-edge contact with friction, wall with
 -- friction) for the checkpoint tests: -v mode=write runs it and writes a checkpoint,
 -- -v mode=read reads one into the same scene and runs on (-v out=FILE: and writes one).
+-- -v checkpoint_every=N adds periodic checkpoints (periodic.h5).
 local mode = slender.var("mode", "write")
 local file = slender.var("file", "scene.h5")
 local sim = slender.simulation { dimension = 2, seed = 3, quiet = true }
@@ -15,6 +16,9 @@ sim:fix("drag", "damping/viscous", { gamma = 0.5 })
 sim:fix("feed", "inject/wire", { chain = "w", radius = r, channels = "left", speed = slender.var("speed", 0.5),
                                  perturb = 0.05 })
 sim:integrator("verlet", { dt = 0.005 })
+-- -v checkpoint_every=N: periodic checkpoints to periodic.h5 (the kill test)
+local every = slender.var("checkpoint_every", 0)
+if every > 0 then sim:dump("periodic", "checkpoint", { file = "periodic.h5", every = every }) end
 if mode == "read" then sim:read_checkpoint(file) end
 sim:run(slender.var("steps", 12000))
 if mode == "write" then sim:write_checkpoint(file) end

@@ -738,6 +738,40 @@ TEST(SceneBuild, MeshFromParameters) {
                                 {"size", std::vector<double>{10, 10}},
                                 {"edge", 1e-3}})),
                InputError);
+  // extra refinements multiply the count: a buildable disc refined six more times would be
+  // 6e9 triangles; refused before any memory is taken, naming both keys (fuzz finding)
+  try {
+    add_mesh(sim, P({{"name", std::string("v")},
+                     {"shape", std::string("disc")},
+                     {"edge", 0.01},
+                     {"refine", 6.0}}));
+    ADD_FAILURE() << "a disc of 6e9 triangles was attempted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("edge = 0.010000, refine = 6 give a disc of about"),
+              std::string::npos)
+        << e.what();
+  }
+  // the core refinement of a disc counts too (a core as wide as the disc, 6 more levels)
+  try {
+    add_mesh(sim, P({{"name", std::string("w")},
+                     {"shape", std::string("disc")},
+                     {"edge", 0.002},
+                     {"refine_center", 1.0},
+                     {"refine_levels", 6.0}}));
+    ADD_FAILURE() << "a disc of 4e7 triangles was attempted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("refine_levels = 6 within refine_center"),
+              std::string::npos)
+        << e.what();
+  }
+  // and a refinement that stays small is still made
+  const auto [n2, t2] = add_mesh(sim, P({{"name", std::string("x")},
+                                         {"shape", std::string("disc")},
+                                         {"edge", 0.5},
+                                         {"refine", 1.0}}));
+  // radius 1 at edge 0.5 (one level) refined once is radius 2 at edge 0.5 (two levels)
+  EXPECT_EQ(t2, tris);
+  EXPECT_EQ(n2, nodes);
 }
 #endif
 

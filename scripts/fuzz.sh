@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Runs one libFuzzer target for a given amount of CPU time (not wall time: on a shared
+# machine at low priority a wall-clock limit says little) and reports executions, coverage
+# and findings. The target's seed corpus is copied, so tests/fuzz/corpus stays as committed;
+# a finding is left in OUT/artifacts (add it to the corpus once fixed).
+#   cmake --preset fuzz && cmake --build --preset fuzz -j 2
+#   scripts/fuzz.sh checkpoint 3600 /tmp/fuzz-checkpoint     # targets: deck_table, mesh, checkpoint
+set -euo pipefail
+cd "$(dirname "$0")/.."
+target=${1:?target: deck_table, mesh or checkpoint}
+cpu_limit=${2:-3600}
+out=${3:-/tmp/slender-fuzz-$target}
+bin=$PWD/build-fuzz/tests/fuzz/fuzz_$target
+[ -x "$bin" ] || { echo "fuzz.sh: $bin missing: cmake --preset fuzz && cmake --build --preset fuzz" >&2; exit 1; }
+mkdir -p "$out/corpus" "$out/artifacts"
+cp -n tests/fuzz/corpus/"$target"/* "$out/corpus/" 2>/dev/null || true
+cd "$out"
+nice -n "${FUZZ_NICE:-10}" "$bin" -timeout=30 -rss_limit_mb=4096 -artifact_prefix="$out/artifacts/" \
+  -print_final_stats=1 corpus >"$out/fuzz.log" 2>&1 &
+pid=$!
+cpu=0
+tick=$(getconf CLK_TCK)
+while kill -0 "$pid" 2>/dev/null; do
+  sleep 5
+  # utime + stime of the fuzzer (fields 14 and 15 of /proc/PID/stat; after the ")" that
+  # ends the command name they are the 12th and 13th), in seconds
+  if stat=$(cat /proc/"$pid"/stat 2>/dev/null); then
+    cpu=$(awk -v t="$tick" '{print int(($12 + $13) / t)}' <<<"${stat##*) }")
+  fi
+  if [ "$cpu" -ge "$cpu_limit" ]; then kill -INT "$pid"; break; fi
+done
+wait "$pid" && rc=0 || rc=$?
+execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' fuzz.log | grep -o '[0-9]*$' || echo "?")
+cov=$(grep -o 'cov: [0-9]*' fuzz.log | tail -1 | grep -o '[0-9]*$' || echo "?")
+findings=$(find artifacts -type f | wc -l)
+echo "fuzz $target: $cpu CPU-s, $execs executions, coverage $cov, $findings finding(s)," \
+  "exit $rc (0 or 72 after the CPU limit: clean); log $out/fuzz.log"
+[ "$findings" -eq 0 ]

@@ -1,155 +1,17 @@
 #!/usr/bin/env python3
 """How the morphology of a crumpling deck depends on the hardening slope K_h of the bending
 law (docs/models.md §2.2: K_h is not given by the thesis; the decks take the [C] default
-0.05 K_e). Runs the deck for each hardening ratio K_h/K_e and seed until max_phi (or to the
-jam), and measures the final wire:
-  - ab_ratio, winding, loops, contacts: as the deck reports them (docs/models.md §2.7);
-  - wall_contacts: wire-wall contacts at the end (thermo column cavity.contacts);
-  - outer_share: the share of the wire inside the cavity that lies beyond 0.7 r (the outer
-    ring holds 51 % of the area; loop cascades along the wall fill it, folds along the feed
-    axis leave it empty);
-  - half_width: the 90th percentile of |y| / r over the wire inside the cavity (how far the
-    packing reaches away from the feed axis).
-Writes <out>.csv, <out>.md and a PNG of the final wires (a row per seed, a column per
-ratio). A study, not a test.
+0.05 K_e): scripts/crumple_study.py with --variable hardening.
 
   /usr/bin/python3 scripts/hardening_study.py [--f 25] [--ratios 0.05 0.1 0.2 0.4 0.8] \
       [--seeds 1 2] [--max-phi 0.2 | --jam]
 """
-import argparse
-import concurrent.futures as cf
-import csv
-import math
 import os
 import sys
-import tempfile
 
-import numpy as np
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from slender.io import Trajectory  # noqa: E402
-from slender.run import run_deck  # noqa: E402
-
-RESULT_KEYS = ("phi", "jammed", "ab_ratio", "winding", "loops", "contacts", "steps", "wall_s", "s")
-
-
-def shape_measures(pos, r):
-    """outer_share and half_width of the wire nodes strictly inside the cavity."""
-    rad = np.hypot(pos[:, 0], pos[:, 1])
-    inside = rad < r - 0.5
-    return float(np.mean(rad[inside] > 0.7 * r)), float(np.percentile(np.abs(pos[inside, 1]), 90) / r)
-
-
-def last_thermo(path, column):
-    with open(path) as fh:
-        rows = list(csv.DictReader(fh))
-    return float(rows[-1][column]) if rows else math.nan
-
-
-def run(binary, examples, deck, f, ratio, seed, max_phi, speed):
-    # no periodic frames: the dump writes the state the run stops in
-    variables = [f"f={f}", f"hardening={ratio}", f"seed={seed}", f"max_phi={max_phi}",
-                 "dump_every=1000000000000", "thermo_every=10000"]
-    if speed is not None:
-        variables.append(f"s={speed}")
-    row = {"f": f, "hardening": ratio, "seed": seed, "status": "ok"}
-    with tempfile.TemporaryDirectory() as tmp:
-        res = run_deck(os.path.join(examples, "crumple2d", deck + ".lua"), variables, cwd=tmp, binary=binary)
-        row.update({k: float(v) for k, v in res.result.items() if k in RESULT_KEYS})
-        if res.returncode != 0 or "phi" not in row:
-            row.update(status="failed", error=(res.error or "?")[:200])
-            return row, None
-        row["wall_contacts"] = last_thermo(os.path.join(tmp, deck + "_thermo.csv"), "cavity.contacts")
-        with Trajectory(os.path.join(tmp, deck + ".h5")) as t:
-            chains = t.frame(-1)
-    # in chain order (injected nodes are appended to the arrays)
-    pos = chains[0] if len(chains) == 1 else np.concatenate(chains)
-    row["outer_share"], row["half_width"] = shape_measures(pos, f)
-    return row, pos
-
-
-KEYS = ["f", "s", "hardening", "seed", "phi", "jammed", "ab_ratio", "winding", "loops", "contacts",
-        "wall_contacts", "outer_share", "half_width", "steps", "wall_s", "status", "error"]
-
-
-def write_tables(rows, out, title):
-    with open(out + ".csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=KEYS, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
-    with open(out + ".md", "w") as fh:
-        fh.write(f"# {title}\n\nWritten by `scripts/hardening_study.py`. A/B < 0.5 is classic by the docs/models.md "
-                 "§2.7 criterion; outer share = wire beyond 0.7 r; half width = 90th percentile of |y|/r.\n\n")
-        fh.write("| K_h/K_e | seed | phi | jammed | A/B | winding | loops | contacts | wall contacts | "
-                 "outer share | half width | steps | wall s |\n|" + "---|" * 13 + "\n")
-        for r in rows:
-            if r["status"] != "ok":
-                fh.write(f"| {r['hardening']:g} | {r['seed']} | failed: {r.get('error')} |" + " |" * 10 + "\n")
-                continue
-            fh.write(f"| {r['hardening']:g} | {r['seed']} | {r['phi']:.4f} | {int(r['jammed'])} | "
-                     f"{r['ab_ratio']:.2f} | {r['winding']:.2f} | {int(r['loops'])} | {int(r['contacts'])} | "
-                     f"{int(r['wall_contacts'])} | {r['outer_share']:.2f} | {r['half_width']:.2f} | "
-                     f"{int(r['steps'])} | {r['wall_s']:.0f} |\n")
-
-
-def plot(results, ratios, seeds, out, title):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(len(seeds), len(ratios), figsize=(2.6 * len(ratios), 2.7 * len(seeds) + 0.5),
-                             squeeze=False)
-    t = np.linspace(0, 2 * np.pi, 200)
-    for (r, xy), ax in zip(results, [ax for row in axes for ax in row]):
-        ax.plot(r["f"] * np.cos(t), r["f"] * np.sin(t), color="0.6", lw=0.8)
-        if xy is not None:
-            ax.plot(xy[:, 0], xy[:, 1], color="k", lw=0.8)
-            ax.set_title(f"K_h/K_e = {r['hardening']:g}, seed {r['seed']}\nA/B {r['ab_ratio']:.2f}, "
-                         f"outer {r['outer_share']:.2f}", fontsize=8)
-        ax.set_aspect("equal")
-        ax.set_xticks([])
-        ax.set_yticks([])
-    fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out + ".png", dpi=110)
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
-    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
-    ap.add_argument("--deck", default="classic")
-    ap.add_argument("--f", type=float, default=25)
-    ap.add_argument("--ratios", type=float, nargs="+", default=[0.05, 0.1, 0.2, 0.4, 0.8])
-    ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2])
-    ap.add_argument("--max-phi", type=float, default=0.2)
-    ap.add_argument("--jam", action="store_true", help="run to the jam (max_phi = 1)")
-    ap.add_argument("--speed", type=float, default=None, help="feed speed (default: the deck's s)")
-    ap.add_argument("--jobs", type=int, default=1)
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "crumple2d", "hardening"))
-    a = ap.parse_args()
-    a.slender, a.examples = os.path.abspath(a.slender), os.path.abspath(a.examples)
-    max_phi = 1.0 if a.jam else a.max_phi
-    cases = [(k, s) for s in a.seeds for k in a.ratios]
-    with cf.ThreadPoolExecutor(a.jobs) as ex:
-        results = list(ex.map(lambda c: run(a.slender, a.examples, a.deck, a.f, c[0], c[1], max_phi, a.speed),
-                              cases))
-    rows = [r for r, _ in results]
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    stop = "to the jam" if a.jam else f"to phi = {max_phi:g}"
-    title = f"{a.deck}, f = {a.f:g}, {stop}: the wire against the hardening ratio K_h/K_e"
-    write_tables(rows, a.out, title)
-    plot(results, a.ratios, a.seeds, a.out, title)
-    for r in rows:
-        if r["status"] != "ok":
-            print(f"K_h/K_e = {r['hardening']:g}, seed {r['seed']}: failed: {r.get('error')}")
-            continue
-        print(f"K_h/K_e = {r['hardening']:g}, seed {r['seed']}: phi {r['phi']:.4f} (jammed {int(r['jammed'])}), "
-              f"A/B {r['ab_ratio']:.2f}, outer share {r['outer_share']:.2f}, half width {r['half_width']:.2f}, "
-              f"wall contacts {int(r['wall_contacts'])}, {r['wall_s']:.0f} s")
-    print("wrote", a.out + ".csv", a.out + ".md", a.out + ".png")
-    return 0 if all(r["status"] == "ok" for r in rows) else 1
-
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from crumple_study import ROOT, main, shape_measures  # noqa: E402,F401
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    raise SystemExit(main(variable="hardening", label="K_h/K_e",
+                          default_out=os.path.join(ROOT, "docs", "crumple2d", "hardening")))

@@ -84,6 +84,7 @@ struct ContactLaw {
   double mu_dynamic = 0.0;       // mu_d
   double stick_stiffness = 0.0;  // k_st
   double slip_velocity = 0.0;    // v_th: a slipping contact slower than this sticks again
+  bool new_stick_always = true;  // a new contact sticks (else only when slower than v_th)
 
   // Declares the law's parameters on a style's spec (shared by pair and wall).
   // A style that derives the stiffness itself (per contact) makes it optional.
@@ -105,6 +106,12 @@ struct ContactLaw {
     s.real("slip_velocity", "v_th: slipping contacts slower than this stick again")
         .def(1e-4)
         .nonnegative();
+    s.string("new_contacts",
+             "how a contact starts: \"stick\" (always, with an unstretched stick spring) or "
+             "\"by_speed\" (it sticks only when its tangential speed is below slip_velocity, "
+             "else it starts slipping; docs/models.md §2.3)")
+        .def("stick")
+        .choices({"stick", "by_speed"});
   }
   static ContactLaw from(const ParamValues& p, double length_scale) {
     ContactLaw c;
@@ -116,6 +123,7 @@ struct ContactLaw {
     c.stick_stiffness =
         p.has("stick_stiffness") ? p.real("stick_stiffness") : 0.1 * c.stiffness * length_scale;
     c.slip_velocity = p.real("slip_velocity");
+    c.new_stick_always = p.str("new_contacts") == "stick";
     if (c.mu_dynamic > c.mu_static)
       throw InputError("contact law: mu_dynamic (" + std::to_string(c.mu_dynamic) +
                        ") must not exceed mu_static (" + std::to_string(c.mu_static) + ")");
@@ -176,7 +184,12 @@ struct ContactLaw {
     const Vec3 vt = v - vn * n;
     const double vt2 = vt.squaredNorm();
     const double limit = mu_static * fn, limit2 = limit * limit;
-    if (!st.active || (!st.stick && vt2 < slip_velocity * slip_velocity)) {
+    const bool slow = vt2 < slip_velocity * slip_velocity;
+    if (!st.active) {
+      // a new contact: stuck, or (new_contacts = "by_speed") stuck only when slow
+      st.stick = new_stick_always || slow;
+      st.xi.setZero();
+    } else if (!st.stick && slow) {
       st.stick = true;
       st.xi.setZero();
     }

@@ -42,6 +42,11 @@ class BendHysteresisBond : public ChainBondStyle {
     s.real("transition", "delta: width of the quadratic transition (default kappa_y / 2)")
         .nonnegative();
     s.boolean("guard", "widen the elastic range so that M = 0 stays in its linear part").def(true);
+    s.boolean("saturate",
+              "the literal reading of the thesis' Alg. 1 (docs/models.md §2.2): the moment is g(x) "
+              "alone, without K_h kappa_pl, so it stops growing once the node flows (the hardening "
+              "slope acts only inside the transition)")
+        .def(false);
     s.real("initial_plastic",
            "random initial kappa_pl, uniform in +-value (seeded symmetry breaking)")
         .def(0.0)
@@ -68,6 +73,7 @@ class BendHysteresisBond : public ChainBondStyle {
         ratio_(p.real("hardening_ratio")),
         delta_(p.has("transition") ? p.real("transition") : 0.5 * p.real("yield_curvature")),
         guard_(p.boolean("guard")),
+        memory_(p.boolean("saturate") ? 0.0 : ratio_),
         gamma_(p.real("damping")) {
     if (sim.dimension() != 2)
       throw InputError("bond style 'bend2d/hysteresis' needs a 2D simulation (dimension = 2)");
@@ -118,12 +124,14 @@ class BendHysteresisBond : public ChainBondStyle {
   // *dissipated gets the energy per unit rest length that this step's plastic flow
   // made unrecoverable: with W the work along the path (elastic to the yield point
   // x_y, then flow along M = g(x_y) + K_h kappa_pl) and E the recoverable energy,
-  // W - dE = dkappa_pl (g(x_y) - K_h x_y) + 1/2 K_h (1 - K_h/K_e) d(kappa_pl^2).
+  // W - dE = dkappa_pl (g(x_y) - K_m x_y) + 1/2 K_m (1 - K_m/K_e) d(kappa_pl^2), with
+  // K_m = K_h the slope that plastic flow adds to the moment (K_m = 0 with saturate: then
+  // the moment plateaus at g(x_y) and all of M dkappa_pl is dissipated).
   double moment(double kappa, double& kpl, double Ke, double* stored = nullptr,
                 double* dissipated = nullptr) const {
-    // K_h / K_e is the hardening ratio: no division per hinge (they set this loop's pace)
-    const double Kh = ratio_ * Ke;
-    const double x0 = -ratio_ * kpl;
+    // K_m / K_e is memory_: no division per hinge (they set this loop's pace)
+    const double Km = memory_ * Ke;
+    const double x0 = -memory_ * kpl;
     double xp = ky_, xm = -ky_;
     if (guard_) {
       xp = std::max(ky_, x0 + delta_);
@@ -151,15 +159,15 @@ class BendHysteresisBond : public ChainBondStyle {
         cubic = c * y * y * y / 3.0;
       }
     }
-    const double M = g + Kh * kpl;
+    const double M = g + Km * kpl;
     if (dissipated) {
       *dissipated = kpl == kpl_old ? 0.0
-                                   : (kpl - kpl_old) * (g - Kh * x) +
-                                         0.5 * Kh * (1 - ratio_) * (kpl * kpl - kpl_old * kpl_old);
+                                   : (kpl - kpl_old) * (g - Km * x) +
+                                         0.5 * Km * (1 - memory_) * (kpl * kpl - kpl_old * kpl_old);
     }
     if (stored) {
       // zero-moment point of the (possibly just updated) branch
-      const double z = -ratio_ * kpl;
+      const double z = -memory_ * kpl;
       *stored = 0.5 * Ke * (x - z) * (x - z) + cubic;
     }
     return M;
@@ -230,6 +238,7 @@ class BendHysteresisBond : public ChainBondStyle {
   double k_, ky_, ratio_, delta_;
   double curve_ = delta_ > 0 ? (1 - ratio_) / (2 * delta_) : 0.0;  // c / K_e of the transition
   bool guard_;
+  double memory_;  // K_m / K_e: K_h / K_e, or 0 with saturate
   double gamma_;
   Property<double>* kpl_ = nullptr;
   HingeNodeFields fields_;

@@ -78,7 +78,7 @@ const char* const kTemplates[] = {
     "  if type(T.size) == 'table' then for _, v in ipairs(T.size) do"
     "   if math.type(v) and v == v then s = math.max(s, math.abs(v)) end end end"
     "  local e = T.edge"
-    "  if math.type(e) and e > 0 and s / e > 48 and s / e < 1e5 then T.edge = s / 48 end"
+    "  if math.type(e) and e > 0 and s / e > 16 and s / e < 1e5 then T.edge = s / 16 end"
     " end sim:mesh(T)",
     "local sim = S.simulation{dimension=3, quiet=true} sim:mesh{name='s', shape='disc',"
     " radius=1, edge=0.5} sim:shell('koiter', T) sim:integrator('newmark', {dt=1e-4})"

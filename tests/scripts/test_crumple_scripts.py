@@ -79,6 +79,7 @@ def main():
     rc = lambda p: 0.5 * (1 + np.sqrt(1 + 4 * 50.0 ** 2 * (1 - p)))
     assert abs(rc(1.0) - 1.0) < 1e-12 and abs(rc(0.0) - 50.0) < 1
     sweep_resumes_interrupted_runs()
+    causes_table_means_and_errors()
     print("crumple scripts: ok")
 
 
@@ -94,6 +95,25 @@ if not restart:
 print(f"RESULT phi=0.3 jammed=1 loops=4 winding=0.2 ab_ratio=0.3 contacts=9 "
       f"steps={{step + 100}} wall_s=1.5 ended=jam")
 """
+
+
+def causes_table_means_and_errors():
+    """scripts/causes_table.py: the mean over seeds and its standard error, per value; a failed
+    run is counted, not averaged."""
+    import causes_table
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "study.csv")
+        keys = ["value", "seed", "status"] + [k for k, _, _ in causes_table.COLUMNS]
+        base = {k: 1.0 for k, _, _ in causes_table.COLUMNS}
+        write(path, keys, [["0.1", 1, "ok"] + [base[k] if k != "phi" else 0.3 for k, _, _ in causes_table.COLUMNS],
+                           ["0.1", 2, "ok"] + [base[k] if k != "phi" else 0.5 for k, _, _ in causes_table.COLUMNS],
+                           ["0.1", 3, "failed"] + ["" for _ in causes_table.COLUMNS],
+                           ["1", 1, "ok"] + [2.0 for _ in causes_table.COLUMNS]])
+        rows = causes_table.rows_of("drag", path)
+    assert len(rows) == 2, rows
+    # mean 0.4, standard error sqrt(0.02 / 2) = 0.1; the failed seed is named
+    assert rows[0].startswith("| drag = 0.1 | 2 (1 failed) | 0.400 ± 0.100 |"), rows[0]
+    assert rows[1].startswith("| drag = 1 | 1 | 2.000 |"), rows[1]
 
 
 def sweep_resumes_interrupted_runs():

@@ -36,7 +36,7 @@ def main():
                             "--out", out], capture_output=True, text=True)
         assert p.returncode == 0, p.stdout + p.stderr
         with open(out + ".csv") as fh:
-            rows = {float(r["hardening"]): r for r in csv.DictReader(fh)}
+            rows = {float(r["value"]): r for r in csv.DictReader(fh)}
         for ext in (".md", ".png"):
             assert os.path.getsize(out + ext) > 0
     soft, hard = rows[0.05], rows[0.8]

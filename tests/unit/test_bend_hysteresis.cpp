@@ -194,3 +194,51 @@ TEST(BendHysteresisBond, StateOnlyInScenesThatUseIt) {
                           P({{"k", 1.0}, {"yield_curvature", 0.02}, {"transition", 0.05}})),
                InputError);
 }
+
+// saturate = true, the literal reading of Alg. 1 (docs/models.md §2.2): the moment is g(x)
+// alone, so once the node flows it stays at g(x_p) however far the hinge is bent; unloading
+// is elastic from there and leaves the whole plastic curvature; the energy balance holds.
+TEST(BendHysteresisBond, SaturatingLawPlateausAndBalancesItsEnergy) {
+  RawParams p = law();
+  p["saturate"] = true;
+  Hinge h(p);
+  const double plateau = 60 * 0.04 - 57.0 / 0.04 * 0.02 * 0.02;  // g(x_p), slope K_h there
+  for (int i = 1; i <= 100; ++i) h.moment(0.001 * i);            // load to kappa = 0.1
+  EXPECT_NEAR(h.kpl(), 0.06, 1e-12);
+  EXPECT_NEAR(h.moment(0.1), plateau, 1e-12);
+  for (int i = 101; i <= 300; ++i) h.moment(0.001 * i);  // on to 0.3: no growth
+  EXPECT_NEAR(h.moment(0.3), plateau, 1e-12);
+  EXPECT_NEAR(h.kpl(), 0.26, 1e-12);
+  // the hardening law would have grown by K_h * 0.2 = 0.6 over the same path
+  Hinge hard(law());
+  for (int i = 1; i <= 300; ++i) hard.moment(0.001 * i);
+  EXPECT_NEAR(hard.moment(0.3) - plateau, 3.0 * 0.26, 1e-12);
+  // unloading to zero moment: elastic, at kappa = kappa_pl (no K_h kappa_pl to undo)
+  EXPECT_NEAR(h.moment(0.26), 0.0, 1e-12);
+  EXPECT_NEAR(h.kpl(), 0.26, 1e-12);
+  // work = change of recoverable energy + dissipation along a random path (trapezoid rule)
+  std::mt19937 g(8);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Hinge w(p);
+  double k = 0.0, m_prev = w.moment(0.0), work = 0.0;
+  for (int leg = 0; leg < 8; ++leg) {
+    const double target = u(g);
+    const int n = 20000;
+    for (int i = 1; i <= n; ++i) {
+      const double kn = k + (target - k) * i / n;
+      const double m = w.moment(kn);
+      work += 0.5 * (m + m_prev) * (target - k) / n;
+      m_prev = m;
+    }
+    k = target;
+  }
+  EXPECT_NEAR(w.value("work"), work, 1e-6 * std::abs(work));
+  EXPECT_GT(w.value("dissipated"), 0.1 * work);
+  // conservative in the elastic range: forces against the energy by finite differences
+  Simulation s(2, 1);
+  s.add_chain("w", wiggly_chain(12, 2, 6, 0.02), 1.0, false);
+  RawParams q = P({{"k", 60.0}, {"yield_curvature", 0.5}, {"saturate", true}});
+  s.add_bond("bend2d/hysteresis", q);
+  s.compute_forces();
+  EXPECT_LT(fd_force_error(s), 1e-6);
+}

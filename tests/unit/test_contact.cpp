@@ -227,6 +227,43 @@ TEST(ContactLaw, SlipThatReversesSticksAgain) {
   EXPECT_NEAR(f.x(), 100.0 * 0.01 * 0.01, 1e-12);
 }
 
+// new_contacts: a contact that is made while sliding fast starts stuck by default (the
+// fresh stick spring), and slipping (mu_d N against the motion) with "by_speed" unless it
+// is slower than v_th (docs/models.md §2.3).
+TEST(ContactLaw, NewContactsStickOrFollowTheirSpeed) {
+  ContactLaw law;
+  law.stiffness = 1e3;
+  law.mu_static = 0.5;
+  law.mu_dynamic = 0.45;
+  law.stick_stiffness = 100.0;
+  law.slip_velocity = 1e-3;
+  const Vec3 n(0, 1, 0);
+  double fn = 0.0;
+  FrictionState a;  // new (not active)
+  Vec3 f = law.force(0.1, n, Vec3(0.01, 0, 0), 0.01, a, &fn);
+  EXPECT_TRUE(a.stick);
+  EXPECT_NEAR(f.x(), -100.0 * 0.01 * 0.01, 1e-12);  // the stick spring stretched by v dt
+  law.new_stick_always = false;
+  FrictionState b;
+  f = law.force(0.1, n, Vec3(0.01, 0, 0), 0.01, b, &fn);
+  EXPECT_FALSE(b.stick);
+  EXPECT_NEAR(f.x(), -0.45 * fn, 1e-12);  // slipping from the first contact
+  FrictionState c;                        // slower than v_th: sticks as before
+  f = law.force(0.1, n, Vec3(5e-4, 0, 0), 0.01, c, &fn);
+  EXPECT_TRUE(c.stick);
+  EXPECT_NEAR(f.x(), -100.0 * 5e-4 * 0.01, 1e-12);
+  // the deck key
+  ParamSpec s("pair", "t", "test");
+  ContactLaw::declare(s);
+  EXPECT_TRUE(ContactLaw::from(s.validate(RawParams{{"stiffness", 1.0}}), 1.0).new_stick_always);
+  EXPECT_FALSE(
+      ContactLaw::from(
+          s.validate(RawParams{{"stiffness", 1.0}, {"new_contacts", std::string("by_speed")}}), 1.0)
+          .new_stick_always);
+  EXPECT_THROW(s.validate(RawParams{{"stiffness", 1.0}, {"new_contacts", std::string("slip")}}),
+               InputError);
+}
+
 TEST(SphereWallFix, StickSlipTransitionAtTheStaticCoefficient) {
   EXPECT_NEAR(slip_ratio(0.4, true), 0.4, 0.02);
 }

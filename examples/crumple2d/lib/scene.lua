@@ -31,6 +31,9 @@ function M.build(p)
 
   local d, k1, k2, m = 1.0, 1000.0, 60.0, 1.0
   local r = f * d
+  -- -v new_contacts=by_speed: a new contact sticks only when slower than v_th, as the thesis'
+  -- text reads (§2.3); the default "stick" starts every new contact stuck
+  local new_contacts = slender.var("new_contacts", "stick")
   local kc = 10 * k1 / d
   local dc = 0.1 * 2 * math.sqrt(m * kc * d)
 
@@ -42,10 +45,16 @@ function M.build(p)
              perturb = 0.01 * d }
   sim:bond("spring", { k = k1 })
   -- bending dashpot gamma_r = 0.01 sqrt(k2 m) l0 (§2.1 [C])
-  sim:bond("bend2d/hysteresis", { k = k2, yield_curvature = yield, hardening_ratio = hardening,
-                                  damping = 0.01 * math.sqrt(k2 * m) * d })
+  local bend = { k = k2, yield_curvature = yield, hardening_ratio = hardening,
+                 damping = 0.01 * math.sqrt(k2 * m) * d }
+  -- -v transition_ratio= sets delta / kappa_y (the style's default 0.5 when not given; §2.2 [?])
+  local transition_ratio = slender.var("transition_ratio", -1)
+  if transition_ratio >= 0 then bend.transition = transition_ratio * yield end
+  -- -v saturate=true: the literal reading of Alg. 1, a moment that stops growing with plastic flow
+  if slender.var("saturate", false) then bend.saturate = true end
+  sim:bond("bend2d/hysteresis", bend)
   sim:pair("contact/node-edge", { diameter = d, stiffness = kc, damping = dc, mu_static = mu,
-    mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s,
+    mu_dynamic = 0.9 * mu, stick_stiffness = k1 / d, slip_velocity = 1e-3 * s, new_contacts = new_contacts,
     -- pair-list skin: the list is rebuilt once a node has moved skin/2, so the results do
     -- not depend on it (f = 10 to its jam: the same in every digit for 0.1 ... 1 d); 0.3 d
     -- took 27 % less CPU than 1 d there
@@ -53,8 +62,20 @@ function M.build(p)
   -- channel nodes are kinematic, so the wall needs no openings
   sim:fix("cavity", "wall/circle", { radius = r, diameter = d, stiffness = kc, damping = dc,
     mu_static = wall_mu, mu_dynamic = 0.9 * wall_mu, stick_stiffness = k1 / d,
-    slip_velocity = 1e-3 * s })
-  sim:fix("drag", "damping/viscous", { gamma = 0.01 * math.sqrt(k1 * m) })
+    slip_velocity = 1e-3 * s, new_contacts = new_contacts })
+  -- translational damping gamma_t = 0.01 sqrt(k1 m) on absolute velocities (§2.1 [C]); the
+  -- 2D causes study (docs/crumple2d/causes.md) varies it: -v drag_factor= scales gamma_t,
+  -- -v damping=relative puts it on the relative velocity of neighbours (bond damper)
+  -- instead, which leaves a wire sliding along itself undamped
+  local gamma_t = slender.var("drag_factor", 1.0) * 0.01 * math.sqrt(k1 * m)
+  local damping = slender.var("damping", "absolute")
+  if damping == "absolute" then
+    sim:fix("drag", "damping/viscous", { gamma = gamma_t })
+  elseif damping == "relative" then
+    sim:bond("damper", { gamma = gamma_t })
+  else
+    error("-v damping= must be absolute or relative, got '" .. tostring(damping) .. "'", 0)
+  end
   -- the channels are kinematic, so jam_force stands for the feed rollers' strength: 0.1 k1 d
   -- is 10 % axial strain of the wire (docs/crumple2d/timings.md: doubling it moves the
   -- jamming density by 0.006-0.02 at f = 10-50)
@@ -134,7 +155,8 @@ function M.report(sim, ctx, wall, node_steps)
     mu = ctx.mu, seed = ctx.seed,
     phi = sim:value("feed.phi"), jammed = sim:value("feed.jammed"), force = sim:value("feed.force_avg"),
     steps = sim:step(), wall_s = wall, nodes = sim:nnodes(),
-    contacts = sim:value("contact/node-edge.contacts"), ab_ratio = sim:value("shape.ratio"),
+    contacts = sim:value("contact/node-edge.contacts"), wall_contacts = sim:value("cavity.contacts"),
+    ab_ratio = sim:value("shape.ratio"),
     loops = sim:value("loops.loops"), fractal_dimension = ctx.with_fractal and sim:value("frac.D") or 0,
     winding = sim:value("shape.winding"), ke_per_node = sim:value("ke") / sim:nnodes(),
     node_steps_per_s = node_steps / math.max(wall, 1e-9), ended = ctx.ended or "stop" }

@@ -106,6 +106,11 @@ struct ContactLaw {
     s.real("slip_velocity", "v_th: slipping contacts slower than this stick again")
         .def(1e-4)
         .nonnegative();
+    declare_new_contacts(s);
+  }
+  // The key that says how a new contact starts (also declared by the shell contact, whose
+  // other friction keys scale differently).
+  static void declare_new_contacts(ParamSpec& s) {
     s.string("new_contacts",
              "how a contact starts: \"stick\" (always, with an unstretched stick spring) or "
              "\"by_speed\" (it sticks only when its tangential speed is below slip_velocity, "

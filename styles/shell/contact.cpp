@@ -79,6 +79,7 @@ class ShellContactPair : public PairStyle {
     s.real("slip_velocity", "slipping contacts slower than this stick again")
         .def(1e-4)
         .nonnegative();
+    ContactLaw::declare_new_contacts(s);
     s.output("contacts", "number of triangle pairs in contact at the last evaluation");
     s.output("far_contacts",
              "contacts of triangles farther apart than far_distance in the reference");
@@ -129,6 +130,7 @@ class ShellContactPair : public PairStyle {
     friction_.mu_dynamic = p.has("mu_dynamic") ? p.real("mu_dynamic") : 0.9 * friction_.mu_static;
     friction_.stick_stiffness = p.has("stick_stiffness") ? p.real("stick_stiffness") : 4 * k_ / h_;
     friction_.slip_velocity = p.real("slip_velocity");
+    friction_.new_stick_always = p.str("new_contacts") == "stick";
     if (friction_.mu_dynamic > friction_.mu_static)
       throw InputError("pair 'contact/shell': mu_dynamic must not exceed mu_static");
   }
@@ -137,7 +139,7 @@ class ShellContactPair : public PairStyle {
     RawParams full = raw;
     for (auto& kv : raw)
       if (kv.first != "mu_static" && kv.first != "mu_dynamic" && kv.first != "stick_stiffness" &&
-          kv.first != "slip_velocity")
+          kv.first != "slip_velocity" && kv.first != "new_contacts")
         throw InputError("pair 'contact/shell': modify accepts only the friction keys, not '" +
                          kv.first + "'");
     full["mesh"] = mesh_name_;
@@ -148,6 +150,10 @@ class ShellContactPair : public PairStyle {
     full["dense"] = std::string(dense_all_ ? "all" : "closest");
     if (!full.count("mu_static")) full["mu_static"] = friction_.mu_static;
     if (!full.count("stick_stiffness")) full["stick_stiffness"] = friction_.stick_stiffness;
+    // keys not given keep their values (not the declared defaults)
+    if (!full.count("slip_velocity")) full["slip_velocity"] = friction_.slip_velocity;
+    if (!full.count("new_contacts"))
+      full["new_contacts"] = std::string(friction_.new_stick_always ? "stick" : "by_speed");
     set_friction(spec(style_name()).validate(full));
     if (!friction_.frictional())
       for (auto& c : pairs_) c.friction = FrictionState{};

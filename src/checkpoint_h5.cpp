@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <sstream>
 #include <tuple>
 #include <typeinfo>
@@ -50,7 +51,8 @@ void sync_path(const std::string& path, bool folder) {
 
 // The keys whose values differ between the parameters a checkpoint recorded for a style
 // and the deck's ("key = value" lines): "radius 10 in the checkpoint, 12 here".
-std::vector<std::string> changed_parameters(const std::string& saved, const std::string& now) {
+std::vector<std::string> changed_parameters(const std::string& saved, const std::string& now,
+                                            const std::set<std::string>& deliberate) {
   auto parse = [](const std::string& text) {
     std::map<std::string, std::string> m;
     std::istringstream in(text);
@@ -64,7 +66,7 @@ std::vector<std::string> changed_parameters(const std::string& saved, const std:
   std::vector<std::string> out;
   for (auto& [key, value] : b) {
     auto it = a.find(key);
-    if (it != a.end() && it->second != value)
+    if (it != a.end() && it->second != value && !deliberate.count(key))
       out.push_back(key + " " + it->second + " in the checkpoint, " + value + " here");
   }
   return out;
@@ -302,13 +304,14 @@ void Simulation::read_checkpoint_checked(const std::string& path) {
     if (!(rng >> rng_read)) throw bad("dataset state/rng is not a random-stream state");
   }
   // a deck that differs from the one that wrote the file (another cavity radius, friction):
-  // legitimate for some keys (a jamming threshold, the time step), so said, not refused
+  // legitimate for some keys (a jamming threshold, the time step), so said, not refused;
+  // keys that sim:modify changed in this run are deliberate and not said
   if (h5::exists(f, "parameters")) {
     auto pg = h5::open_group(f, "parameters");
     for (Style* s : this->styles()) {
       if (s->parameters().empty() || H5Aexists(pg, group_name(*s).c_str()) <= 0) continue;
-      for (auto& change :
-           changed_parameters(h5::read_attr_string(pg, group_name(*s)), s->parameters()))
+      for (auto& change : changed_parameters(h5::read_attr_string(pg, group_name(*s)),
+                                             s->parameters(), modified_keys_[s->id()]))
         std::fprintf(stderr,
                      "slender: warning: checkpoint '%s' was written with other parameters: %s "
                      "'%s' (%s): %s\n",

@@ -461,13 +461,7 @@ int l_integrator(lua_State* L) {
 }
 int l_modify(lua_State* L) {
   Simulation& sim = sim_arg(L);
-  std::string id = str_arg(L, 2, "the style id");
-  Style* s = sim.find_style(id);
-  if (!s) throw InputError("modify: no style with id '" + id + "'");
-  const RawParams raw = to_raw(L, 3);
-  s->modify(raw);
-  s->note_modified(raw);
-  sim.forces_valid = false;
+  sim.modify_style(str_arg(L, 2, "the style id"), to_raw(L, 3));
   return 0;
 }
 int l_thermo(lua_State* L) {

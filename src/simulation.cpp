@@ -35,6 +35,14 @@ void Style::note_modified(const RawParams& raw) {
   parameters_.clear();
   for (auto& [key, text] : lines) parameters_ += key + " = " + text + "\n";
 }
+void Simulation::modify_style(const std::string& id, const RawParams& raw) {
+  Style* s = find_style(id);
+  if (!s) throw InputError("modify: no style with id '" + id + "'");
+  s->modify(raw);
+  s->note_modified(raw);
+  for (auto& kv : raw) modified_keys_[id].insert(kv.first);
+  forces_valid = false;
+}
 void Style::modify(const RawParams&) {
   throw InputError("'" + id() + "' (" + style_name() + ") cannot be modified between runs");
 }

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -146,6 +147,10 @@ class Simulation {
   FixStyle& fix(const std::string& id);
   ComputeStyle& compute(const std::string& id);
   Style* find_style(const std::string& id);
+  // sim:modify: new values for some of a style's parameters between runs. A checkpoint read
+  // back later may differ from the scene in exactly these keys (a deck that rolls back and
+  // retries with another value), so read_checkpoint does not warn about them.
+  void modify_style(const std::string& id, const RawParams& raw);
   // Every style of the scene, families in a fixed order (shells, growths, bonds, pairs,
   // fixes, computes, dumps, the integrator), each in the order the deck added it.
   std::vector<Style*> styles() const;
@@ -310,6 +315,8 @@ class Simulation {
   };
   std::vector<Measuring> measuring_;
   void cache_frequencies();
+  // the keys sim:modify changed, per style id (read_checkpoint does not warn about them)
+  std::map<std::string, std::set<std::string>> modified_keys_;
 };
 
 }  // namespace slender

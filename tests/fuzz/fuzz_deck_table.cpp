@@ -21,8 +21,12 @@ const char* const kTemplates[] = {
     // simulation options
     "local sim = S.simulation(T) sim:wire{name='w', nodes=5, spacing=1}"
     " sim:integrator('verlet', {dt=0.01}) sim:run(2)",
-    // a wire from geometry
-    "local sim = S.simulation{dimension=2, quiet=true} sim:wire(T)"
+    // a wire from geometry (a valid but long wire, up to the memory check's limit, is cut
+    // to 10^4 nodes: 3e6 nodes take 30 s under the sanitizers; 1e9 and more still reach
+    // the check)
+    "local sim = S.simulation{dimension=2, quiet=true}"
+    " if type(T) == 'table' and math.type(T.nodes) and T.nodes > 1e4 and T.nodes < 1e9 then"
+    "  T.nodes = 10000 end sim:wire(T)"
     " sim:integrator('verlet', {dt=0.01}) sim:run(2)",
     // bonds
     "local sim = S.simulation{dimension=2, quiet=true} sim:wire{name='w', nodes=6, spacing=1}"

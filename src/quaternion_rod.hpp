@@ -101,6 +101,32 @@ inline double coupling(const Quat& q, const Vec3& xa, const Vec3& xb, double res
   return 0.5 * w * diff.squaredNorm();
 }
 
+// The 4 x 3 map phi -> (0, phi) o q: a small rotation phi (a world-frame vector) applied
+// after q changes it by L(q) phi / 2. For |q| = 1 its columns are orthonormal and
+// orthogonal to q.
+inline Eigen::Matrix<double, 4, 3> rotation_map(const Quat& q) {
+  Eigen::Matrix<double, 4, 3> L;
+  const Vec3 v = q.tail<3>();
+  L.row(0) = -v.transpose();
+  L.bottomRows<3>() << q[0], v[2], -v[1],  //
+      -v[2], q[0], v[0],                   //
+      v[1], -v[0], q[0];                   // q0 I - [v]x
+  return L;
+}
+
+// The world-frame torque of a generalised force F on a unit quaternion: the work of F
+// on the change L(q) phi / 2 is torque . phi.
+inline Vec3 torque(const Quat& q, const Quat& F) {
+  return 0.5 * rotation_map(q).transpose() * F;
+}
+
+// q turned by the smallest rotation that carries d3(q) onto the unit vector t: the
+// frame carried along when its tangent moves (docs/models.md §4.6).
+inline Quat carried_onto(const Quat& q, const Vec3& t) {
+  const Eigen::Quaterniond r = Eigen::Quaterniond::FromTwoVectors(d3(q), t);
+  return mul(Quat(r.w(), r.x(), r.y(), r.z()), q).normalized();
+}
+
 // The unit quaternion whose d3 is the unit vector t, turning the z axis onto t by
 // the shortest rotation (d1, d2 follow from it).
 inline Quat aligned_with(const Vec3& t) {

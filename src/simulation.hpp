@@ -67,12 +67,27 @@ struct Coordinates {
   Property<double>* m = nullptr;
   Property<int>* fixed = nullptr;  // nonzero: prescribed (not integrated, zero force)
   bool unit = true;
+  // Set by a style that moves these coordinates with the positions inside the force
+  // evaluation (rod frames carried onto their tangents): an integrator that keeps its own
+  // history of q (gear) cannot run them.
+  bool follows_positions = false;
+  // The rate after a step keeps its length (carried along the great circle of the step)
+  // instead of losing its radial part only, which takes cos(h |dq/dt|) off the speed:
+  // a first-order energy loss of a fast spin. Off by default (runs of the penalty
+  // rod stay as they were).
+  bool keep_speed = false;
   // back onto |q| = 1 after an update; the derivatives lose their radial part
   void constrain(std::size_t i, std::initializer_list<Vec4*> derivs) const {
     Vec4& qi = (*q)[i];
     qi.normalize();
-    for (Vec4* d : derivs)
-      if (d) *d -= d->dot(qi) * qi;
+    bool first = true;
+    for (Vec4* d : derivs) {
+      if (!d) continue;
+      const double speed = first && keep_speed ? d->norm() : 0.0;
+      *d -= d->dot(qi) * qi;
+      if (speed > 0.0) *d *= speed / d->norm();
+      first = false;
+    }
   }
 };
 

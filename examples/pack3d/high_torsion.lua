@@ -18,7 +18,12 @@ require("lib.scene").run { name = "high_torsion", R = 10, rotation = "held", jam
     -- coupling C = coupling_factor * YA (docs/models.md §4.3 leaves C open): |t - d3| falls as 1/C;
     -- measured at R = 4: 0.134 / 0.0126 / 0.0056 / 0.0013 at 1 / 10 / 20 / 100 for 1 / 2.2 / 2.8 / 6.5
     -- times the run time; 20 keeps it below the 1e-2 docs/models.md §4.3 asks for
-    sim:bond("rod/cosserat", { YI = k.YI, GJ = G * J, coupling = slender.var("coupling_factor", 20) * k.YA,
+    -- -v director=tangent ties d3 to the tangent exactly (the limit C -> infinity,
+    -- docs/models.md §4.6): no coupling constant, a larger stable step
+    local director = slender.var("director", "penalty")
+    local coupling = nil
+    if director == "penalty" then coupling = slender.var("coupling_factor", 20) * k.YA end
+    sim:bond("rod/cosserat", { YI = k.YI, GJ = G * J, director = director, coupling = coupling,
                                rest_curvature = { 0, 1 / R_i, 0 },
                                -- rho J (rho = 1); docs/models.md §4.4 allows a larger m_q in quasi-static
                                -- runs where it limits the step: -v rot_inertia_factor=

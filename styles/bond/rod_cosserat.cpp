@@ -8,6 +8,11 @@
 // A new edge (injection, or a chain's first binding) is born with its neighbour's
 // frame carried over onto its own tangent by the smallest rotation, so a growing
 // rod keeps its twist continuous.
+// With director = "tangent" the penalty's limit C -> infinity is taken instead (§4.6):
+// before every evaluation each frame is carried onto its edge's tangent by the smallest
+// rotation, the frames' torques about axes across the edge act on the edge's nodes, and
+// only the spin about the tangent stays a dynamic degree of freedom. This removes the
+// stiffest mode of the penalty form (C on the tiny frame inertia), which limits the step.
 #include <array>
 #include <cmath>
 
@@ -25,9 +30,15 @@ class CosseratRodBond : public ChainBondStyle {
                 "quaternions, d3 tied to the tangent (docs/models.md §4)");
     s.real("YI", "bending stiffness Y I").required().positive();
     s.real("GJ", "torsional stiffness G J").required().positive();
+    s.string("director",
+             "how d3 follows the edge tangent: penalty (the energy C/2 |e| |t - d3|^2, "
+             "docs/models.md §4.3) or tangent (exactly, the limit C -> infinity: the frames "
+             "keep only their spin about the tangent, §4.6; integrator verlet or fire)")
+        .def(std::string("penalty"))
+        .choices({"penalty", "tangent"});
     s.real("coupling",
-           "C: stiffness of the penalty tying d3 to the tangent (docs/models.md §4.3: C = YA)")
-        .required()
+           "C: stiffness of the penalty tying d3 to the tangent (docs/models.md §4.3: C = YA); "
+           "required with director = penalty, refused with director = tangent")
         .positive();
     s.vector("rest_curvature", "kbar = (k1, k2, k3): rest Darboux vector in the material frame")
         .def(std::vector<double>{0, 0, 0})
@@ -50,20 +61,33 @@ class CosseratRodBond : public ChainBondStyle {
   }
   CosseratRodBond(Context& sim, const ParamValues& p)
       : ChainBondStyle(sim, p),
+        tangent_(p.str("director") == "tangent"),
         K_(p.real("YI"), p.real("YI"), p.real("GJ")),
-        C_(p.real("coupling")),
+        C_(p.has("coupling") ? p.real("coupling") : 0.0),
         kbar_(p.vec3("rest_curvature")),
         Ir_(p.real("rot_inertia") * p.real("inertia_scale")),
         gamma_q_(p.real("rot_damping")),
         coords_(&sim.coordinates("rod.q")) {
     if (sim.dimension() != 3)
       throw InputError("bond style 'rod/cosserat' needs a 3D simulation (dimension = 3)");
+    if (!tangent_ && !p.has("coupling"))
+      throw InputError(
+          "bond style 'rod/cosserat': 'coupling' (C, e.g. 20 YA) is required with director = "
+          "\"penalty\"; director = \"tangent\" ties d3 to the tangent exactly without it");
+    if (tangent_ && p.has("coupling"))
+      throw InputError(
+          "bond style 'rod/cosserat': 'coupling' has no meaning with director = \"tangent\" "
+          "(d3 follows the tangent exactly); remove it, or use director = \"penalty\"");
+    // the frames move with the positions inside the force evaluation: an integrator with
+    // its own history of q (gear) cannot run them
+    if (tangent_) coords_->follows_positions = coords_->keep_speed = true;
     born_ = &sim.nodes().require<int>("rod.q.born", 0);
     if (p.boolean("node_energy")) node_energy_ = &sim.nodes().require<double>("bend.energy", 0.0);
   }
   const char* energy_category() const override { return "bend"; }
 
   double compute(Context& sim) override {
+    if (tangent_) return compute_tangent(sim);
     const auto& x = sim.nodes().x;
     auto& q = coords_->q->values();
     auto& fq = coords_->f->values();
@@ -95,44 +119,7 @@ class CosseratRodBond : public ChainBondStyle {
             return c_part;
           });
       for (double m : max_part) max_ec_per_length = std::max(max_ec_per_length, m);
-      // vertices between consecutive edges (all of them on a closed chain)
-      const int nv = c->closed ? ne : ne - 1;
-      auto vertex = [&](int k, double& b_sum, double& t_sum) {
-        const int ea = k, eb = (k + 1) % ne;
-        const int qa = c->edge_tail(ea), qb = c->edge_tail(eb);
-        const double l = 0.5 * (c->rest_length[ea] + c->rest_length[eb]);
-        // q and -q are the same rotation: the neighbour is taken in the same
-        // hemisphere (a closed ring's frames come back as -q after a full turn)
-        const double sgn = q[qa].dot(q[qb]) < 0.0 ? -1.0 : 1.0;
-        qrod::Quat fb = qrod::Quat::Zero();
-        const auto h = qrod::hinge(q[qa], sgn * q[qb], l, K_, kbar_, fq[qa], fb);
-        fq[qb] += sgn * fb;
-        b_sum += h.bend;
-        t_sum += h.twist;
-        if (node_energy_) (*node_energy_)[c->edge_head(ea)] = h.bend;
-      };
-      const int T = threads_for(static_cast<size_t>(nv), sim.threads());
-      if (T <= 1) {
-        for (int k = 0; k < nv; ++k) vertex(k, bend, twist);
-      } else {
-        // vertex k turns frames k and k + 1: the even vertices, then the odd ones, touch
-        // disjoint frames (the closing vertex of a ring, which wraps, goes last)
-        const int open_part = c->closed ? nv - 1 : nv;
-        for (int parity = 0; parity < 2; ++parity) {
-          const size_t count = static_cast<size_t>(std::max(0, (open_part - parity + 1) / 2));
-          std::array<double, kMaxThreads> b_part{}, t_part{};
-          parallel_ranges(T, count, [&](int tid, size_t begin, size_t end) {
-            for (size_t j = begin; j < end; ++j)
-              vertex(parity + 2 * static_cast<int>(j), b_part[static_cast<size_t>(tid)],
-                     t_part[static_cast<size_t>(tid)]);
-          });
-          for (int t = 0; t < T; ++t) {
-            bend += b_part[static_cast<size_t>(t)];
-            twist += t_part[static_cast<size_t>(t)];
-          }
-        }
-        if (c->closed) vertex(nv - 1, bend, twist);
-      }
+      hinges(sim, *c, fq, bend, twist);
     }
     misalignment_ = std::sqrt(2.0 * max_ec_per_length / C_);
     sim.add_energy("twist", twist);
@@ -153,12 +140,117 @@ class CosseratRodBond : public ChainBondStyle {
     // the coupling moves nodes like a transverse spring C / l0, and turns a
     // quaternion with stiffness ~ 4 C l0 (|J3| ~ 2); bending and torsion couple
     // neighbouring quaternions with ~ 4 K / l0 each side (zig-zag: x 4)
+    if (tangent_) {
+      // no penalty: bending turns the edges (on the nodes' masses, as a rod without
+      // frames), torsion spins the frames
+      const double wq2 = 16.0 * K_.z() / l0 / mq;
+      return std::max(bend_frequency(sim, K_.x() / l0), 2.0 * std::sqrt(wq2));
+    }
     const double wx = 2.0 * std::sqrt(C_ / (l0 * m));
     const double wq2 = (4.0 * C_ * l0 + 16.0 * K_.maxCoeff() / l0) / mq;
     return std::max(wx, 2.0 * std::sqrt(wq2));
   }
 
  private:
+  // director = "tangent" (docs/models.md §4.6): frames carried onto their tangents, the
+  // hinges' torques across each edge turned into forces on its nodes, the spin kept.
+  double compute_tangent(Context& sim) {
+    const auto& x = sim.nodes().x;
+    auto& q = coords_->q->values();
+    auto& v = coords_->v->values();
+    auto& fq = coords_->f->values();
+    const auto& fixed = coords_->fixed->values();
+    double bend = 0.0, twist = 0.0;
+    if (node_energy_)
+      for (auto& e : node_energy_->values()) e = 0.0;
+    hinge_force_.assign(q.size(), Vec4::Zero());
+    for (auto* c : chains(sim)) {
+      bind_edges(sim, *c);
+      const size_t ne = static_cast<size_t>(c->n_edges());
+      // 1. every frame onto its tangent (a held frame too: the nozzle holds its spin); the
+      // spin rate is carried along
+      parallel_ranges(threads_for(ne, sim.threads()), ne, [&](int, size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+          const int e = static_cast<int>(k);
+          const int a = c->edge_tail(e);
+          const Vec3 t = (x[c->edge_head(e)] - x[a]).normalized();
+          const double spin = v[a].dot(qrod::rotation_map(q[a]) * qrod::d3(q[a]));
+          q[a] = qrod::carried_onto(q[a], t);
+          if (!fixed[a]) v[a] = spin * (qrod::rotation_map(q[a]) * t);
+        }
+      });
+      // 2. bending and torsion on the frames
+      hinges(sim, *c, hinge_force_, bend, twist);
+      // 3. a torque across the edge turns the edge (forces on its nodes, e x F = torque);
+      // the torque about the tangent spins the frame
+      sim.parallel_node_forces(ne, [&](int, size_t begin, size_t end, Vec3* f) {
+        for (size_t k = begin; k < end; ++k) {
+          const int e = static_cast<int>(k);
+          const int a = c->edge_tail(e), b = c->edge_head(e);
+          const Vec3 d = x[b] - x[a];
+          const double len = d.norm();
+          const Vec3 t = d / len;
+          const Vec3 tau = qrod::torque(q[a], hinge_force_[a]);
+          const Vec3 fb = tau.cross(t) / len;
+          f[b] += fb;
+          f[a] -= fb;
+          const Vec4 g = qrod::rotation_map(q[a]) * t;  // unit: dq of a unit spin is g / 2
+          fq[a] += (2.0 * tau.dot(t)) * g;
+          if (gamma_q_ > 0) fq[a] -= gamma_q_ * v[a];
+        }
+        return 0.0;
+      });
+    }
+    misalignment_ = 0.0;
+    sim.add_energy("twist", twist);
+    sim.add_energy("coupling", 0.0);
+    return bend;
+  }
+
+  // Bending and torsion at the vertices between consecutive edges (all of them on a
+  // closed chain): generalised forces on the frames into out; energies added.
+  void hinges(Context& sim, const Chain& c, std::vector<Vec4>& out, double& bend, double& twist) {
+    const auto& q = coords_->q->values();
+    const int ne = c.n_edges();
+    const int nv = c.closed ? ne : ne - 1;
+    auto vertex = [&](int k, double& b_sum, double& t_sum) {
+      const int ea = k, eb = (k + 1) % ne;
+      const int qa = c.edge_tail(ea), qb = c.edge_tail(eb);
+      const double l = 0.5 * (c.rest_length[ea] + c.rest_length[eb]);
+      // q and -q are the same rotation: the neighbour is taken in the same
+      // hemisphere (a closed ring's frames come back as -q after a full turn)
+      const double sgn = q[qa].dot(q[qb]) < 0.0 ? -1.0 : 1.0;
+      qrod::Quat fb = qrod::Quat::Zero();
+      const auto h = qrod::hinge(q[qa], sgn * q[qb], l, K_, kbar_, out[qa], fb);
+      out[qb] += sgn * fb;
+      b_sum += h.bend;
+      t_sum += h.twist;
+      if (node_energy_) (*node_energy_)[c.edge_head(ea)] = h.bend;
+    };
+    const int T = threads_for(static_cast<size_t>(nv), sim.threads());
+    if (T <= 1) {
+      for (int k = 0; k < nv; ++k) vertex(k, bend, twist);
+    } else {
+      // vertex k turns frames k and k + 1: the even vertices, then the odd ones, touch
+      // disjoint frames (the closing vertex of a ring, which wraps, goes last)
+      const int open_part = c.closed ? nv - 1 : nv;
+      for (int parity = 0; parity < 2; ++parity) {
+        const size_t count = static_cast<size_t>(std::max(0, (open_part - parity + 1) / 2));
+        std::array<double, kMaxThreads> b_part{}, t_part{};
+        parallel_ranges(T, count, [&](int tid, size_t begin, size_t end) {
+          for (size_t j = begin; j < end; ++j)
+            vertex(parity + 2 * static_cast<int>(j), b_part[static_cast<size_t>(tid)],
+                   t_part[static_cast<size_t>(tid)]);
+        });
+        for (int t = 0; t < T; ++t) {
+          bend += b_part[static_cast<size_t>(t)];
+          twist += t_part[static_cast<size_t>(t)];
+        }
+      }
+      if (c.closed) vertex(nv - 1, bend, twist);
+    }
+  }
+
   // Gives every edge of the chain its quaternion mass and, for an edge that has
   // none yet, its frame; the node after an open chain's last edge carries no edge.
   void bind_edges(Context& sim, const Chain& c) {
@@ -200,6 +292,7 @@ class CosseratRodBond : public ChainBondStyle {
     }
   }
 
+  bool tangent_;
   Vec3 K_;
   double C_;
   Vec3 kbar_;
@@ -208,6 +301,7 @@ class CosseratRodBond : public ChainBondStyle {
   Property<int>* born_ = nullptr;
   Property<double>* node_energy_ = nullptr;
   double misalignment_ = 0.0;
+  std::vector<Vec4> hinge_force_;  // director = tangent: the hinges' forces on the frames
 };
 
 }  // namespace slender

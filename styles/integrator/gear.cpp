@@ -114,6 +114,10 @@ class GearIntegrator : public IntegratorStyle {
   void bind_extra(Simulation& sim) {
     xr_.clear();
     for (auto& c : sim.extra_coordinates()) {
+      if (c->follows_positions)
+        throw InputError("integrator 'gear' cannot run the frames '" + c->name +
+                         "': a style moves them with the positions (bond rod/cosserat with "
+                         "director = \"tangent\"); use verlet");
       std::array<Property<Vec4>*, 6> a{};
       for (int k = 2; k < q_; ++k)
         a[k] =

@@ -6,6 +6,8 @@
 -- 38.1 M steps with Gear q = 6; adaptive Verlet takes 4.1x fewer steps at R = 6);
 -- R = 20: ~2 days (projected: steps and nodes both grow as R^3); 6 h with
 -- -v coupling_factor=2 -v rot_inertia_factor=4 (63.7 M steps to its jam at phi = 0.385).
+-- -v director=tangent (d3 tied to the tangent exactly, docs/models.md §4.6) takes 4.4x fewer
+-- steps at R = 6 but jams later at this feed speed (docs/timestep/director_high_R6.md).
 -- Thesis parameters: a = 1, Y = 1000, nu = 0.33, mu_s = 0.2, mu_d = 0.18, intrinsic
 -- radius of curvature R_i = 100 (kbar = (0, 1/R_i, 0), docs/models.md §4.5: the thesis'
 -- "k_y = 0.001" contradicts its R_i = 100; -v R_i=1000 runs that reading).

@@ -25,6 +25,7 @@ WireRaster::WireRaster(const Vec3& center, double radius, double pixel) : h_(pix
       const double dx = px(i) - center.x(), dy = py(j) - center.y();
       if (dx * dx + dy * dy >= r2) state_[index(i, j)] = kWall;
     }
+  empty_ = state_;
 }
 
 void WireRaster::draw(const std::vector<Vec3>& pts, bool closed, double half_width,

@@ -18,6 +18,11 @@ class WireRaster {
   // A square grid of pixel size `pixel` covering the disc of radius `radius`.
   WireRaster(const Vec3& center, double radius, double pixel);
 
+  // Back to the empty cavity (wall only), keeping the memory: a compute evaluated at every
+  // thermo row reuses one image instead of allocating and masking a new one (the fresh
+  // pages and the circle test were ~15 % of a crumpling run, docs/performance.md).
+  void clear() { state_ = empty_; }
+
   // Draws the polyline `pts` (consecutive points joined; `closed` joins the last to
   // the first) with half-width `half_width`; wire pixels store the arclength of the
   // nearest point of the nearest wire, offset by `s_offset` (so that separate
@@ -48,6 +53,9 @@ class WireRaster {
   double h_, x0_, y0_;
   int n_;
   std::vector<std::uint8_t> state_;
+  std::vector<std::uint8_t> empty_;  // the cavity with nothing drawn: state_ after construction
+  // Read only where state_ is kWire, i.e. written by a draw since the last clear(): left
+  // as they were by clear()
   std::vector<double> s_;
   std::vector<float> d2_;  // squared distance to the nearest wire point drawn so far
 };

@@ -6,6 +6,7 @@
 // the wire. The spread of the per-centre slopes gives an uncertainty.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "chain_select.hpp"
 #include "raster2d.hpp"
@@ -68,6 +69,7 @@ class Fractal2dCompute : public ComputeStyle {
     select_chains(sim, names_);
     for (int k = 0; k < n_radii_; ++k)
       rho_.push_back(rho_min_ * std::pow(rho_max_ / rho_min_, k / (n_radii_ - 1.0)));
+    for (double r : rho_) rho2_.push_back(r * r);
   }
 
   void evaluate(Simulation& sim) override {
@@ -78,7 +80,11 @@ class Fractal2dCompute : public ComputeStyle {
     D_ = D_err_ = 0.0;
     centres_ = 0;
     auto chains = select_chains(sim, names_);
-    WireRaster img(c_, r_, pixel_);
+    if (img_)
+      img_->clear();
+    else
+      img_.emplace(c_, r_, pixel_);
+    WireRaster& img = *img_;
     img.draw_chains(sim, chains, 0.5 * d_);
 
     // eligible centres: nodes whose largest circle stays inside the cavity
@@ -104,17 +110,22 @@ class Fractal2dCompute : public ComputeStyle {
       const int j0 = std::max(0, static_cast<int>(std::floor((x.y() - rho_max_ - img.py(0)) / h)));
       const int j1 =
           std::min(n - 1, static_cast<int>(std::ceil((x.y() + rho_max_ - img.py(0)) / h)));
-      for (int j = j0; j <= j1; ++j)
+      // squared distances against squared radii: no root per pixel (this loop was the
+      // largest part of the thermo rows of a crumpling run)
+      const double rmax2 = rho2_.back();
+      for (int j = j0; j <= j1; ++j) {
+        const double dy = img.py(j) - x.y();
         for (int i = i0; i <= i1; ++i) {
           if (img.state(i, j) != WireRaster::kWire) continue;
-          const double dx = img.px(i) - x.x(), dy = img.py(j) - x.y();
-          const double dist = std::sqrt(dx * dx + dy * dy);
-          if (dist > rho_max_) continue;
+          const double dx = img.px(i) - x.x();
+          const double d2 = dx * dx + dy * dy;
+          if (d2 > rmax2) continue;
           // first radius that contains the pixel
           const int k =
-              static_cast<int>(std::lower_bound(rho_.begin(), rho_.end(), dist) - rho_.begin());
+              static_cast<int>(std::lower_bound(rho2_.begin(), rho2_.end(), d2) - rho2_.begin());
           m[k] += 1.0;
         }
+      }
       for (int k = 1; k < n_radii_; ++k) m[k] += m[k - 1];
       for (int k = 0; k < n_radii_; ++k) {
         mean[k] += m[k] / nc;
@@ -144,7 +155,8 @@ class Fractal2dCompute : public ComputeStyle {
   double d_, pixel_, rho_min_, rho_max_;
   int n_radii_, n_centres_;
   std::vector<std::string> names_;
-  std::vector<double> rho_;
+  std::vector<double> rho_, rho2_;
+  std::optional<WireRaster> img_;  // one image, cleared and redrawn at each evaluation
   long step_ = -1, epoch_ = -1;
   double time_ = -1.0;
   double D_ = 0, D_err_ = 0, centres_ = 0;

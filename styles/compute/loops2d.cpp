@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include "chain_select.hpp"
 #include "raster2d.hpp"
@@ -68,9 +69,12 @@ class Loops2dCompute : public ComputeStyle {
     step_ = sim.step;
     epoch_ = sim.state_epoch;
     time_ = sim.time;
-    WireRaster img(c_, r_, pixel_);
-    const auto ranges = img.draw_chains(sim, select_chains(sim, names_), half_width_);
-    count(img, ranges);
+    if (img_)
+      img_->clear();
+    else
+      img_.emplace(c_, r_, pixel_);
+    const auto ranges = img_->draw_chains(sim, select_chains(sim, names_), half_width_);
+    count(*img_, ranges);
   }
 
   double value(const std::string& key) const override {
@@ -88,20 +92,21 @@ class Loops2dCompute : public ComputeStyle {
     const int n = img.size();
     const auto& state = img.states();
     const auto& sval = img.arclengths();
-    std::vector<int> label(state.size(), -1);
-    std::vector<int> stack;
-    std::vector<double> boundary;
+    // the regions' pixels seen so far (kept between evaluations: no fresh pages per row)
+    std::vector<std::uint8_t>& seen = seen_;
+    seen.assign(state.size(), 0);
+    std::vector<int>& stack = stack_;
+    std::vector<double>& boundary = boundary_;
     const double pixel_area = pixel_ * pixel_;
-    int next = 0;
     for (std::size_t seed = 0; seed < state.size(); ++seed) {
-      if (state[seed] != WireRaster::kEmpty || label[seed] >= 0) continue;
+      if (state[seed] != WireRaster::kEmpty || seen[seed]) continue;
       // flood fill one empty region (4-connected: a diagonal step cannot slip
       // through a neck)
       bool wall = false;
       long npix = 0;
       boundary.clear();
       stack.assign(1, static_cast<int>(seed));
-      label[seed] = next;
+      seen[seed] = 1;
       while (!stack.empty()) {
         const int idx = stack.back();
         stack.pop_back();
@@ -118,13 +123,12 @@ class Loops2dCompute : public ComputeStyle {
             wall = true;
           } else if (state[k] == WireRaster::kWire) {
             boundary.push_back(sval[k]);
-          } else if (label[k] < 0) {
-            label[k] = next;
+          } else if (!seen[k]) {
+            seen[k] = 1;
             stack.push_back(k);
           }
         }
       }
-      ++next;
       const double area = npix * pixel_area;
       if (wall || area < min_area_ || boundary.empty()) continue;
       holes_ += 1;
@@ -171,6 +175,10 @@ class Loops2dCompute : public ComputeStyle {
   Vec3 c_;
   double d_, pixel_, half_width_, gap_, min_area_;
   std::vector<std::string> names_;
+  std::optional<WireRaster> img_;  // one image, cleared and redrawn at each evaluation
+  std::vector<std::uint8_t> seen_;
+  std::vector<int> stack_;
+  std::vector<double> boundary_;
   long step_ = -1, epoch_ = -1;
   double time_ = -1.0;
   double loops_ = 0, holes_ = 0, area_ = 0, length_sum_ = 0, length_max_ = 0;

@@ -180,3 +180,47 @@ TEST(Fractal2dCompute, NoCentreFarEnoughFromTheWall) {
   EXPECT_EQ(sim.column("D.centres"), 0.0);
   EXPECT_EQ(sim.column("D.D"), 0.0);
 }
+
+// The computes keep one image between evaluations (cleared, not reallocated): a wire that
+// moved must leave no trace of where it was.
+TEST(Loops2dCompute, ReusedImageForgetsTheLastShape) {
+  Simulation sim(2, 1);
+  const std::vector<Vec3> bulb = racket(-5, 0, 20, 6.0);
+  sim.add_chain("w", bulb, 1.0, false);
+  EXPECT_EQ(loops(sim, 30), 1.0);
+  const double area = sim.column("l.loop_area");
+  // the same nodes on a straight line (spacing 0.5): no loop, no hole
+  auto& x = sim.nodes().x;
+  for (std::size_t i = 0; i < bulb.size(); ++i)
+    x[i] = Vec3(-25.0 + 0.5 * static_cast<double>(i) * 50.0 / bulb.size(), -10, 0);
+  ++sim.state_epoch;
+  EXPECT_EQ(sim.column("l.loops"), 0.0);
+  EXPECT_EQ(sim.column("l.holes"), 0.0);
+  for (std::size_t i = 0; i < bulb.size(); ++i) x[i] = bulb[i];
+  ++sim.state_epoch;
+  EXPECT_EQ(sim.column("l.loops"), 1.0);
+  EXPECT_EQ(sim.column("l.loop_area"), area);
+}
+
+TEST(Fractal2dCompute, ReusedImageForgetsTheLastShape) {
+  // a dense serpentine (D = 2), then the same nodes on one straight line (D = 1)
+  Simulation sim(2, 1);
+  std::vector<Vec3> pts;
+  int k = 0;
+  for (double y = -20; y <= 20; y += 0.9, ++k) {
+    const double x = std::sqrt(std::max(0.0, 25.0 * 25.0 - y * y));
+    if (k % 2 == 0)
+      line(pts, Vec3(-x, y, 0), Vec3(x, y, 0));
+    else
+      line(pts, Vec3(x, y, 0), Vec3(-x, y, 0));
+  }
+  sim.add_chain("w", pts, 1.0, false);
+  sim.add_compute("D", "fractal2d", P({{"radius", 50.0}}));
+  EXPECT_GT(sim.column("D.D"), 1.8);
+  auto& x = sim.nodes().x;
+  const double spacing = 90.0 / static_cast<double>(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    x[i] = Vec3(-45.0 + spacing * static_cast<double>(i), 0.3, 0);
+  ++sim.state_epoch;
+  EXPECT_NEAR(sim.column("D.D"), 1.0, 0.05);
+}

@@ -35,6 +35,20 @@ std::vector<Vec3> racket(double x0, double y, double handle, double R, double ga
   return pts;
 }
 
+// A serpentine of strands 0.9 d apart for |y| <= ymax, clipped to the disc of radius R.
+std::vector<Vec3> serpentine(double ymax, double R) {
+  std::vector<Vec3> pts;
+  int k = 0;
+  for (double y = -ymax; y <= ymax; y += 0.9, ++k) {
+    const double x = std::sqrt(std::max(0.0, R * R - y * y));
+    if (k % 2 == 0)
+      line(pts, Vec3(-x, y, 0), Vec3(x, y, 0));
+    else
+      line(pts, Vec3(x, y, 0), Vec3(-x, y, 0));
+  }
+  return pts;
+}
+
 double loops(Simulation& sim, double r, const std::string& column = "l.loops",
              double pixel = 0.25) {
   sim.add_compute("l", "loops2d", P({{"radius", r}, {"pixel", pixel}}));
@@ -140,15 +154,7 @@ TEST(Fractal2dCompute, LineIsOneDimensional) {
 TEST(Fractal2dCompute, DenselyPackedWireIsTwoDimensional) {
   // a serpentine of strands 0.9 d apart fills the disc: M grows like rho^2
   Simulation sim(2, 1);
-  std::vector<Vec3> pts;
-  int k = 0;
-  for (double y = -49; y <= 49; y += 0.9, ++k) {
-    const double x = std::sqrt(std::max(0.0, 50.0 * 50.0 - y * y));
-    if (k % 2 == 0)
-      line(pts, Vec3(-x, y, 0), Vec3(x, y, 0));
-    else
-      line(pts, Vec3(x, y, 0), Vec3(-x, y, 0));
-  }
+  const std::vector<Vec3> pts = serpentine(49, 50);
   sim.add_chain("w", pts, 1.0, false);
   sim.add_compute("D", "fractal2d", P({{"radius", 50.0}}));
   EXPECT_NEAR(sim.column("D.D"), 2.0, 0.05);
@@ -205,15 +211,7 @@ TEST(Loops2dCompute, ReusedImageForgetsTheLastShape) {
 TEST(Fractal2dCompute, ReusedImageForgetsTheLastShape) {
   // a dense serpentine (D = 2), then the same nodes on one straight line (D = 1)
   Simulation sim(2, 1);
-  std::vector<Vec3> pts;
-  int k = 0;
-  for (double y = -20; y <= 20; y += 0.9, ++k) {
-    const double x = std::sqrt(std::max(0.0, 25.0 * 25.0 - y * y));
-    if (k % 2 == 0)
-      line(pts, Vec3(-x, y, 0), Vec3(x, y, 0));
-    else
-      line(pts, Vec3(x, y, 0), Vec3(-x, y, 0));
-  }
+  const std::vector<Vec3> pts = serpentine(20, 25);
   sim.add_chain("w", pts, 1.0, false);
   sim.add_compute("D", "fractal2d", P({{"radius", 50.0}}));
   EXPECT_GT(sim.column("D.D"), 1.8);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "simulation.hpp"
@@ -22,6 +23,15 @@ class WireRaster {
   // thermo row reuses one image instead of allocating and masking a new one (the fresh
   // pages and the circle test were ~15 % of a crumpling run, docs/performance.md).
   void clear() { state_ = empty_; }
+  // The image kept in `img`, cleared, or made on first use.
+  static WireRaster& reuse(std::optional<WireRaster>& img, const Vec3& center, double radius,
+                           double pixel) {
+    if (img)
+      img->clear();
+    else
+      img.emplace(center, radius, pixel);
+    return *img;
+  }
 
   // Draws the polyline `pts` (consecutive points joined; `closed` joins the last to
   // the first) with half-width `half_width`; wire pixels store the arclength of the

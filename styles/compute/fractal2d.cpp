@@ -6,7 +6,6 @@
 // the wire. The spread of the per-centre slopes gives an uncertainty.
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "chain_select.hpp"
 #include "raster2d.hpp"
@@ -80,11 +79,7 @@ class Fractal2dCompute : public ComputeStyle {
     D_ = D_err_ = 0.0;
     centres_ = 0;
     auto chains = select_chains(sim, names_);
-    if (img_)
-      img_->clear();
-    else
-      img_.emplace(c_, r_, pixel_);
-    WireRaster& img = *img_;
+    WireRaster& img = WireRaster::reuse(img_, c_, r_, pixel_);
     img.draw_chains(sim, chains, 0.5 * d_);
 
     // eligible centres: nodes whose largest circle stays inside the cavity

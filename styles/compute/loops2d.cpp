@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <optional>
 
 #include "chain_select.hpp"
 #include "raster2d.hpp"
@@ -69,12 +68,9 @@ class Loops2dCompute : public ComputeStyle {
     step_ = sim.step;
     epoch_ = sim.state_epoch;
     time_ = sim.time;
-    if (img_)
-      img_->clear();
-    else
-      img_.emplace(c_, r_, pixel_);
-    const auto ranges = img_->draw_chains(sim, select_chains(sim, names_), half_width_);
-    count(*img_, ranges);
+    WireRaster& img = WireRaster::reuse(img_, c_, r_, pixel_);
+    const auto ranges = img.draw_chains(sim, select_chains(sim, names_), half_width_);
+    count(img, ranges);
   }
 
   double value(const std::string& key) const override {

@@ -123,8 +123,20 @@ inline Vec3 torque(const Quat& q, const Quat& F) {
 // q turned by the smallest rotation that carries d3(q) onto the unit vector t: the
 // frame carried along when its tangent moves (docs/models.md §4.6).
 inline Quat carried_onto(const Quat& q, const Vec3& t) {
-  const Eigen::Quaterniond r = Eigen::Quaterniond::FromTwoVectors(d3(q), t);
-  return mul(Quat(r.w(), r.x(), r.y(), r.z()), q).normalized();
+  const Vec3 d = d3(q);
+  const double c = d.dot(t);
+  if (c < -1.0 + 1e-6) {
+    // d3 almost opposite to t: the axis of the smallest rotation is ill-defined
+    const Eigen::Quaterniond r = Eigen::Quaterniond::FromTwoVectors(d, t);
+    return mul(Quat(r.w(), r.x(), r.y(), r.z()), q).normalized();
+  }
+  // (1 + cos θ, d × t) = 2 cos(θ/2) (cos(θ/2), sin(θ/2) n): the rotation by θ about n
+  // from d onto t, up to a positive factor that the final normalisation removes (one
+  // root instead of the four of FromTwoVectors; this runs for every edge and evaluation)
+  Quat r;
+  r[0] = 1.0 + c;
+  r.tail<3>() = d.cross(t);
+  return mul(r, q).normalized();
 }
 
 // The unit quaternion whose d3 is the unit vector t, turning the z axis onto t by

@@ -41,6 +41,29 @@ TEST(QuaternionRod, DirectorsAreTheColumnsOfTheRotationMatrix) {
   EXPECT_LT((d3(aligned_with(Vec3(1, 2, -2).normalized())) - Vec3(1, 2, -2) / 3.0).norm(), 1e-12);
 }
 
+TEST(QuaternionRod, CarriedOntoIsTheSmallestRotationOfTheFrame) {
+  // carried_onto(q, t) turns the frame by the smallest rotation taking d3 onto t (§4.6):
+  // the result is Eigen's FromTwoVectors rotation applied to q, for any angle up to and
+  // including d3 opposite to t, and a frame already on t is left as it is
+  std::normal_distribution<double> n(0, 1);
+  for (int k = 0; k < 200; ++k) {
+    const Quat q = random_quat();
+    Vec3 t(n(gen), n(gen), n(gen));
+    if (k % 4 == 1) t = d3(q) + 1e-3 * t;   // small turns, as in a step
+    if (k % 4 == 2) t = -d3(q) + 1e-9 * t;  // nearly opposite: the fallback
+    t.normalize();
+    const Eigen::Quaterniond r = Eigen::Quaterniond::FromTwoVectors(d3(q), t);
+    const Quat expected = mul(Quat(r.w(), r.x(), r.y(), r.z()), q).normalized();
+    const Quat got = carried_onto(q, t);
+    EXPECT_NEAR(got.norm(), 1.0, 1e-14);
+    // (Eigen's path for opposite vectors, through an SVD, is good to ~1e-8)
+    EXPECT_LT((d3(got) - t).norm(), k % 4 == 2 ? 1e-6 : 1e-12) << k;
+    EXPECT_LT((got - expected).norm(), 1e-12) << k;
+  }
+  const Quat q = random_quat();
+  EXPECT_LT((carried_onto(q, d3(q)) - q).norm(), 1e-15);
+}
+
 TEST(QuaternionRod, BMatricesGiveTheMaterialDarbouxVector) {
   // (B_j q) . p = vec(conj(q) o p)_j in the scalar-first ordering (docs/models.md §4.2)
   for (int k = 0; k < 20; ++k) {

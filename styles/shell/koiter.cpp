@@ -310,10 +310,23 @@ class KoiterShell : public ShellStyle {
       Mat2 Gt;
       Gt << up1.dot(Ga1), up1.dot(Ga2), up2.dot(Ga1), up2.dot(Ga2);
       gp.detG = Gt.determinant();
-      if (!(gp.detG > 0))
-        throw InputError("growth '" + growth_id_ + "' gives a non-invertible tensor at (" +
-                         std::to_string(gp.X.x()) + ", " + std::to_string(gp.X.y()) + ", " +
-                         std::to_string(gp.X.z()) + ")");
+      // the in-plane growth must stretch the surface by positive factors: det > 0 and
+      // trace > 0 (both eigenvalues of the 2 x 2 tensor with a positive real part); det > 0
+      // alone passes G = -1, a factor below zero in both directions
+      if (!(gp.detG > 0) || !(Gt.trace() > 0)) {
+        char buf[768];
+        std::snprintf(buf, sizeof buf,
+                      "growth '%s' at (%g, %g, %g), t = %g: the in-plane growth tensor ((%g, "
+                      "%g), (%g, %g)) %s; growth factors must be positive (a factor <= 0, from "
+                      "'factor', 'rate' or 'fn', shrinks the surface to nothing or through it)",
+                      growth_id_.c_str(), gp.X.x(), gp.X.y(), gp.X.z(), sim.time(), Gt(0, 0),
+                      Gt(0, 1), Gt(1, 0), Gt(1, 1),
+                      !std::isfinite(gp.detG) ? "is not finite"
+                      : gp.detG == 0          ? "is singular"
+                      : gp.detG < 0           ? "reverses the surface's orientation"
+                                              : "has negative factors");
+        throw InputError(buf);
+      }
       gp.P = Gt.inverse();
     }
   }

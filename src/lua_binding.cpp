@@ -523,15 +523,14 @@ int l_run(lua_State* L) {
   RunOptions opt;
   int cb_ref = LUA_NOREF;
   if (lua_type(L, 2) == LUA_TNUMBER) {
-    // sim:run(n) is sim:run{steps = n}: the same checks (an integer, >= 0, at most 2^53, so
-    // that 2^63 is not refused as "negative" after an overflow)
+    // sim:run(n) is sim:run{steps = n}, with the same checks (an integer, >= 0, at most
+    // 2^53, so that 2^63 is not refused as "negative" after an overflow)
     lua_createtable(L, 0, 1);
     lua_pushvalue(L, 2);
     lua_setfield(L, -2, "steps");
-    auto p = run_spec().validate(to_raw(L, -1));
-    lua_pop(L, 1);
-    opt.steps = p.integer("steps");
-  } else {
+    lua_replace(L, 2);
+  }
+  {
     auto p = run_spec().validate(to_raw(L, 2));
     opt.steps = p.integer("steps");
     opt.every = p.integer("every");

@@ -94,7 +94,17 @@ void load_style(hid_t parent, Style& s, const std::string& path) {
 void Simulation::write_checkpoint(const std::string& path) {
   const std::string tmp = path + ".tmp";
   {
-    auto f = h5::create_file(tmp);
+    // the file is written beside its final name and renamed when complete; a failure names
+    // the file the deck asked for, not the temporary one
+    h5::Handle f;
+    try {
+      f = h5::create_file(tmp);
+    } catch (const std::runtime_error& e) {
+      std::string why = e.what();
+      for (auto at = why.find(tmp); at != std::string::npos; at = why.find(tmp, at + path.size()))
+        why.replace(at, tmp.size(), path);
+      throw std::runtime_error(why);
+    }
     h5::attr_string(f, "creator", "slender checkpoint v1");
     auto st = h5::create_group(f, "state");
     std::ostringstream rng;

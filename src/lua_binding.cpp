@@ -640,8 +640,12 @@ int l_set_position(lua_State* L) {
     if (!std::isfinite(x))
       throw InputError("set_position: node " + std::to_string(i + 1) +
                        " would get a non-finite coordinate (" + std::to_string(x) + ")");
+  if (sim.dimension() == 2 && d->size() == 3 && (*d)[2] != 0.0)
+    throw InputError("set_position: node " + std::to_string(i + 1) +
+                     " would get z = " + std::to_string((*d)[2]) +
+                     " in a 2D scene (dimension = 2), whose nodes move in the xy plane: give {x, "
+                     "y}");
   for (size_t c = 0; c < d->size(); ++c) sim.nodes().x[i][static_cast<long>(c)] = (*d)[c];
-  if (sim.dimension() == 2) sim.nodes().x[i].z() = 0;
   sim.forces_valid = false;
   ++sim.state_epoch;
   return 0;

@@ -37,7 +37,8 @@ ParamSpec wire_spec() {
 Chain& add_wire(Simulation& sim, const RawParams& raw, std::vector<Vec3> pts) {
   auto p = wire_spec().validate(raw);
   bool closed = p.boolean("closed");
-  if (!pts.empty()) {
+  const bool from_points = !pts.empty();
+  if (from_points) {
     // a generated wire's keys would be ignored: say so instead
     for (const char* key : {"nodes", "radius", "spacing", "start", "direction"})
       if (raw.count(key))
@@ -77,6 +78,25 @@ Chain& add_wire(Simulation& sim, const RawParams& raw, std::vector<Vec3> pts) {
       for (long i = 0; i < n; ++i) pts.push_back(start + (h * i) * dir);
     }
   }
+  // a 2D scene moves in the xy plane: a z that would be dropped without a word (a tilted
+  // direction shortens the wire, points out of the plane fold onto it) is refused instead
+  if (sim.dimension() == 2) {
+    auto off_plane = [](const Vec3& v) { return v.z() != 0.0; };
+    if (!from_points && off_plane(p.vec3("start")))
+      throw InputError(
+          "wire: start has a z component in a 2D scene (dimension = 2), whose "
+          "nodes lie in the xy plane: give {x, y}");
+    if (!from_points && !p.has("radius") && off_plane(p.vec3("direction")))
+      throw InputError(
+          "wire: direction has a z component in a 2D scene (dimension = 2), whose "
+          "nodes lie in the xy plane: give {dx, dy}");
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      if (off_plane(pts[i]))
+        throw InputError("wire: point " + std::to_string(i + 1) +
+                         " has z = " + std::to_string(pts[i].z()) +
+                         " in a 2D scene (dimension = 2), whose nodes lie in the xy plane: give "
+                         "{x, y}");
+  }
   const double amp = p.real("perturb");
   if (amp > 0) {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -100,6 +120,18 @@ ParamSpec group_spec() {
 
 std::size_t add_group(Simulation& sim, const std::string& name, const RawParams& raw) {
   auto p = group_spec().validate(raw);
+  // styles take their node lists when they are set up: redefining a group later would leave
+  // them on the old nodes without a word, and a chain's or surface's group is its identity
+  if (sim.has_group(name)) {
+    const bool is_chain = sim.topology().find(name) != nullptr;
+    const std::size_t held = sim.group(name).size();
+    throw InputError("group '" + name + "' is already defined (" + std::to_string(held) +
+                     (held == 1 ? " node, " : " nodes, ") +
+                     (name == "all" ? std::string("every node")
+                      : is_chain    ? "the nodes of chain '" + name + "'"
+                                    : std::string("by an earlier command")) +
+                     "): choose another name");
+  }
   std::vector<int> sel;
   if (p.has("chain")) {
     Chain* c = sim.topology().find(p.str("chain"));

@@ -708,7 +708,7 @@ TEST(SceneBuild, WiresAndGroupsFromParameters) {
       [&] {
         add_group(sim, "all", P({{"chain", std::string("line")}}));
       },
-      "group 'all' is every node");
+      "group 'all' is already defined (17 nodes, every node)");
   refuses(
       [&] {
         add_group(sim, "g", P({{"chain", std::string("line")}, {"nodes", std::vector<double>{6}}}));

@@ -1,5 +1,7 @@
 #include "h5util.hpp"
 
+#include "file_check.hpp"
+
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,23 +23,6 @@ Handle checked(hid_t id, herr_t (*closer)(hid_t), const std::string& what) {
 }
 }  // namespace
 
-// Why a file cannot be created, in the user's words (the library's own trace is a page of
-// internals): a missing or read-only folder, a path that is a folder, or the system's reason.
-static std::string why_not_writable(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path p(path);
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::exists(dir, ec)) return "the folder '" + dir.string() + "' does not exist";
-  if (!fs::is_directory(dir, ec)) return "'" + dir.string() + "' is not a folder";
-  if (fs::is_directory(p, ec)) return "a folder of that name exists";
-  if (::access(dir.c_str(), W_OK) != 0)
-    return "the folder '" + dir.string() + "' is not writable (" + std::strerror(errno) + ")";
-  if (fs::exists(p, ec) && ::access(path.c_str(), W_OK) != 0)
-    return std::string("the file exists and is not writable (") + std::strerror(errno) + ")";
-  return "the file may be open in another program (HDF5 locks files it writes)";
-}
-
 // The library prints a trace of its internals for every failed call; our messages say what
 // failed and why, once, so its printing is turned off when slender first touches a file.
 static void quiet_library() {
@@ -52,8 +37,11 @@ Handle create_file(const std::string& path) {
     f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   }
   H5E_END_TRY;
-  if (f < 0)
-    throw std::runtime_error("cannot create HDF5 file '" + path + "': " + why_not_writable(path));
+  if (f < 0) {
+    std::string why = why_not_writable(path);
+    if (why.empty()) why = "the file may be open in another program (HDF5 locks files it writes)";
+    throw std::runtime_error("cannot create HDF5 file '" + path + "': " + why);
+  }
   return Handle(f, H5Fclose);
 }
 Handle open_file(const std::string& path, bool writable) {

@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "file_check.hpp"
 #include "registry.hpp"
 #include "scene_build.hpp"
 #include "simulation.hpp"
@@ -514,6 +515,8 @@ int l_guard(lua_State* L) {
   sim.guard.max_step_fraction = p.real("max_step_fraction");
   sim.guard.ke_factor = p.real("ke_factor");
   sim.guard.max_strain = p.real("max_strain");
+  // written only when the guard fires: a path that cannot take it is said now, at this line
+  require_writable("guard: last_good_file", p.str("last_good_file"));
   sim.guard.last_good_file = p.str("last_good_file");
   return 0;
 }

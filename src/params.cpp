@@ -104,11 +104,12 @@ std::string ParamValues::text() const {
 std::string ParamDecl::range_text() const {
   std::string r;
   if (std::isfinite(lo) || std::isfinite(hi)) {
-    r += lo_open ? "(" : "[";
+    r += lo_open || !std::isfinite(lo) ? "(" : "[";
     r += std::isfinite(lo) ? fmt(lo) : "-inf";
     r += ", ";
     r += std::isfinite(hi) ? fmt(hi) : "inf";
-    r += hi_open ? ")" : "]";
+    // values must be finite, so an unbounded side is open whatever the declaration says
+    r += hi_open || !std::isfinite(hi) ? ")" : "]";
   }
   if (!allowed.empty()) {
     r += "one of";
@@ -166,8 +167,10 @@ ParamValues ParamSpec::validate(const RawParams& raw) const {
                         value_kind(v) + " " + value_text(v));
     };
     auto check_range = [&](double x) {
-      bool bad = !std::isfinite(x) || x < d.lo || x > d.hi || (d.lo_open && x == d.lo) ||
-                 (d.hi_open && x == d.hi);
+      if (!std::isfinite(x))
+        throw InputError(who + ": key '" + d.name + "' = " + fmt(x) + " is not a finite number" +
+                         (d.range_text().empty() ? "" : " (range " + d.range_text() + ")"));
+      bool bad = x < d.lo || x > d.hi || (d.lo_open && x == d.lo) || (d.hi_open && x == d.hi);
       if (bad)
         throw InputError(who + ": key '" + d.name + "' = " + fmt(x) + " is out of range " +
                          d.range_text());

@@ -1,8 +1,11 @@
 #include "thermo_writer.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
+#include "file_check.hpp"
 #include "params.hpp"
 
 namespace slender {
@@ -62,7 +65,12 @@ void ThermoWriter::write(const ThermoOptions& thermo, const std::vector<double>&
       }
       csv_.open(thermo.file,
                 thermo.append ? std::ios::out | std::ios::app : std::ios::out | std::ios::trunc);
-      if (!csv_) throw InputError("cannot open thermo file '" + thermo.file + "'");
+      if (!csv_) {
+        const std::string why = why_not_writable(thermo.file);
+        throw InputError(
+            "cannot open thermo file '" + thermo.file + "'" +
+            (why.empty() ? std::string(" (") + std::strerror(errno) + ")" : ": " + why));
+      }
       // appending under an existing header keeps one header per file
       header_written_ = has_content;
     }

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -227,6 +228,19 @@ TriMesh read_mesh(const std::string& path) {
   return parse_mesh(in, lower_ext(path), path);
 }
 
+// Three coordinates as whole tokens: `>> double` stops at "nan" or "inf" and would report
+// a missing coordinate; strtod reads them, and the caller refuses them by name.
+static bool read_xyz(std::istringstream& s, Vec3& p) {
+  for (int a = 0; a < 3; ++a) {
+    std::string tok;
+    if (!(s >> tok)) return false;
+    char* end = nullptr;
+    p[a] = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end != '\0') return false;
+  }
+  return true;
+}
+
 // Every message names the file and the line: vertex numbers would be ambiguous (OBJ counts
 // from 1, OFF from 0, slender's node numbers from 1).
 TriMesh parse_mesh(std::istream& in, const std::string& format, const std::string& name) {
@@ -266,7 +280,7 @@ TriMesh parse_mesh(std::istream& in, const std::string& format, const std::strin
       if (!(s >> tag) || tag[0] == '#') continue;
       if (tag == "v") {
         Vec3 p;
-        if (!(s >> p.x() >> p.y() >> p.z())) bad(name, ln, "a vertex needs x y z");
+        if (!read_xyz(s, p)) bad(name, ln, "a vertex needs three numbers x y z");
         add_vertex(p);
       } else if (tag == "f") {
         std::vector<long> ids;
@@ -312,15 +326,24 @@ TriMesh parse_mesh(std::istream& in, const std::string& format, const std::strin
     if (nv < 0 || nf < 0) bad(name, ln, "negative vertex or face count");
     for (long i = 0; i < nv; ++i) {
       Vec3 p;
-      if (!next(s) || !(s >> p.x() >> p.y() >> p.z()))
+      if (!next(s))
         bad(name, ln,
-            "a vertex needs x y z (the header announces " + std::to_string(nv) + " vertices)");
+            "the file ends after " + std::to_string(i) + " of the " + std::to_string(nv) +
+                " vertices the header announces");
+      if (!read_xyz(s, p))
+        bad(name, ln,
+            "a vertex needs three numbers x y z (the header announces " + std::to_string(nv) +
+                " vertices)");
       add_vertex(p);
     }
     for (long i = 0; i < nf; ++i) {
       long k = 0;
       std::vector<long> ids(3);
-      if (!next(s) || !(s >> k) || k != 3 || !(s >> ids[0] >> ids[1] >> ids[2]))
+      if (!next(s))
+        bad(name, ln,
+            "the file ends after " + std::to_string(i) + " of the " + std::to_string(nf) +
+                " faces the header announces");
+      if (!(s >> k) || k != 3 || !(s >> ids[0] >> ids[1] >> ids[2]))
         bad(name, ln,
             "only triangles ('3 a b c') are supported (the header announces " + std::to_string(nf) +
                 " faces)");

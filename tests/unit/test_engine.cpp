@@ -48,7 +48,12 @@ TEST(Params, ValidationMessagesNameTheProblem) {
   };
   expect_msg(P({}), "missing required key 'k'");
   expect_msg(P({{"k", 1.0}, {"q", 1.0}}), "unknown key 'q'");
-  expect_msg(P({{"k", 0.0}}), "'k' = 0 is out of range (0, inf]");
+  expect_msg(P({{"k", 0.0}}), "'k' = 0 is out of range (0, inf)");
+  // a non-finite value is named as such, not as out of a range that seems to hold it
+  expect_msg(P({{"k", std::numeric_limits<double>::infinity()}}),
+             "'k' = inf is not a finite number (range (0, inf))");
+  expect_msg(P({{"k", 1.0}, {"v", std::vector<double>{1, std::nan("")}}}),
+             "is not a finite number");
   expect_msg(P({{"k", 1.0}, {"n", 2.5}}), "'n' expects a integer");
   expect_msg(P({{"k", 1.0}, {"n", 9.0}}), "out of range [1, 5]");
   // an integer beyond 2^53 is refused by size, before it could overflow (seed = 1e20)

@@ -2,10 +2,9 @@
 -- precurved rod with frames (quaternion Cosserat rod) whose rotation is held in the
 -- nozzle, so torsion builds up as it is fed into the sphere; stop at the force
 -- threshold of lib/scene.lua.
--- Expected run time: R = 4 (fast mode, -v R=4): ~5 s; R = 10: ~15 min projected (~1 h and
--- 38.1 M steps with Gear q = 6; adaptive Verlet takes 4.1x fewer steps at R = 6);
--- R = 20: ~2 days (projected: steps and nodes both grow as R^3); 6 h with
--- -v coupling_factor=2 -v rot_inertia_factor=4 (63.7 M steps to its jam at phi = 0.385).
+-- Expected run time: R = 4 (fast mode, -v R=4): ~5 s; R = 10: ~6 min on one core (6.1 M steps,
+-- docs/performance.md); R = 20: ~2 h with -t 2 (projected, ~39 M steps; the coupling C = 20 YA
+-- limits the step). Gear q = 6 took 6 h with -v coupling_factor=2 -v rot_inertia_factor=4.
 -- -v director=tangent (d3 tied to the tangent exactly, docs/models.md §4.6) takes 4.4x fewer
 -- steps at R = 6 but jams later at this feed speed (docs/timestep/director_high_R6.md).
 -- Thesis parameters: a = 1, Y = 1000, nu = 0.33, mu_s = 0.2, mu_d = 0.18, intrinsic

@@ -15,6 +15,11 @@ bin=$PWD/build-fuzz/tests/fuzz/fuzz_$target
 mkdir -p "$out/corpus" "$out/artifacts"
 cp -n tests/fuzz/corpus/"$target"/* "$out/corpus/" 2>/dev/null || true
 cd "$out"
+# With autogroup scheduling (Linux's default for desktop and container kernels) nice only
+# orders processes within one session: a fuzzer started with setsid would still take a
+# full share beside a build. Lowering the session's own group makes it yield for real;
+# done only when this script leads its own session (setsid), so no caller is slowed.
+if [ -w /proc/self/autogroup ] && [ "$(ps -o sid= -p $$ | tr -d ' ')" = "$$" ]; then echo "${FUZZ_NICE:-10}" >/proc/self/autogroup 2>/dev/null || true; fi
 nice -n "${FUZZ_NICE:-10}" "$bin" -timeout=30 -rss_limit_mb=4096 -artifact_prefix="$out/artifacts/" \
   -print_final_stats=1 corpus >"$out/fuzz.log" 2>&1 &
 pid=$!

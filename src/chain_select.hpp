@@ -62,6 +62,10 @@ class ChainBondStyle : public BondStyle {
     if (chains_.empty()) setup(sim);
     return chains_;
   }
+  // The chains for a const call (add_hessian): the bound ones, else selected now.
+  std::vector<const Chain*> chains_now(const Context& sim) const {
+    return chains_.empty() ? select_chains(sim, names_) : chains_;
+  }
   // Highest mode of a uniform chain of springs k: omega^2 = 4k / m.
   double stretch_frequency(const Context& sim, double k) const {
     auto ch = select_chains(sim, names_);

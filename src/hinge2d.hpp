@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "context.hpp"
+#include "hessian.hpp"
 #include "nodes.hpp"
 #include "params.hpp"
 #include "threads.hpp"
@@ -113,6 +114,28 @@ struct Hinge2d {
     f.at(p + 2, b).head<2>() -= M * gb;
     f.at(p, a).head<2>() -= M * ga;
     f.at(p + 1, m).head<2>() += M * (ga + gb);
+  }
+  // Second derivatives of a hinge energy E(zeta) into H (docs/models.md §9.2):
+  // E'' g g^T + E' d^2zeta/dx^2, with stiffness = E''(zeta) and moment = E'(zeta). With
+  // A(e) = z x (I - 2 e e^T / |e|^2) / |e|^2, the derivative of z x e / |e|^2 (symmetric),
+  // the blocks of d^2zeta/dx^2 are aa = -A0, am = A0, mm = A1 - A0, mb = -A1, bb = A1.
+  void add_hessian(Hessian& H, const Vec3& xa, const Vec3& xm, const Vec3& xb, int a, int m, int b,
+                   double stiffness, double moment) const {
+    auto A = [](const Eigen::Vector2d& e) {
+      const double l2 = e.squaredNorm();
+      const Eigen::Matrix2d refl = Eigen::Matrix2d::Identity() - 2.0 * e * e.transpose() / l2;
+      Eigen::Matrix2d J;
+      J << 0.0, -1.0, 1.0, 0.0;
+      return Eigen::Matrix2d(J * refl / l2);
+    };
+    const Eigen::Matrix2d A0 = A((xm - xa).head<2>()), A1 = A((xb - xm).head<2>());
+    const Eigen::Vector2d gm = -(ga + gb);
+    H.add(a, a, Eigen::Matrix2d(stiffness * ga * ga.transpose() - moment * A0));
+    H.add(m, m, Eigen::Matrix2d(stiffness * gm * gm.transpose() + moment * (A1 - A0)));
+    H.add(b, b, Eigen::Matrix2d(stiffness * gb * gb.transpose() + moment * A1));
+    H.add_pair(a, m, Eigen::Matrix2d(stiffness * ga * gm.transpose() + moment * A0));
+    H.add_pair(m, b, Eigen::Matrix2d(stiffness * gm * gb.transpose() - moment * A1));
+    H.add_pair(a, b, Eigen::Matrix2d(stiffness * ga * gb.transpose()));
   }
   // dzeta/dt = sum_j dzeta/dx_j . v_j
   double rate(const std::vector<Vec3>& v, int a, int m, int b) const {

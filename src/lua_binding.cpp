@@ -206,9 +206,10 @@ ParamSpec run_spec() {
 }
 
 ParamSpec minimize_spec() {
-  ParamSpec s("command", "minimize",
-              "sim:minimize{...}: relaxation to static equilibrium (FIRE, or L-BFGS on the node "
-              "positions); returns the iterations and whether ftol was reached");
+  ParamSpec s(
+      "command", "minimize",
+      "sim:minimize{...}: relaxation to static equilibrium (FIRE, or L-BFGS or Newton on the node "
+      "positions); returns the iterations and whether ftol was reached");
   s.real("ftol",
          "stop when the largest nodal force (and rod-frame generalised force) is below this")
       .def(1e-8)
@@ -217,7 +218,9 @@ ParamSpec minimize_spec() {
   s.string("method",
            "\"fire\" (damped dynamics; nodes and rod frames), \"lbfgs\" (quasi-Newton on the "
            "energy; node positions only, forces must derive from the energy, friction springs "
-           "hold their force) or \"dynamics\" (the scene's own integrator and damping, e.g. "
+           "hold their force), \"newton\" (Newton-Raphson with the exact Hessians of the "
+           "styles, docs/models.md §9.3; node positions only, every force style must have a "
+           "Hessian) or \"dynamics\" (the scene's own integrator and damping, e.g. "
            "newmark with mass-proportional damping; needs ketol)")
       .def(std::string("fire"));
   s.add("ketol", ParamType::RealOrAuto,
@@ -226,9 +229,10 @@ ParamSpec minimize_spec() {
       .def(std::string("auto"))
       .min(0);
   s.integer("memory", "lbfgs: number of correction pairs kept").def(10.0).min(1);
-  s.add("max_move", ParamType::RealOrAuto,
-        "lbfgs: largest node displacement per iteration (keep it below the contact distance "
-        "where there is contact); \"auto\": unlimited")
+  s.add(
+       "max_move", ParamType::RealOrAuto,
+       "lbfgs, newton: largest node displacement per iteration (keep it below the contact distance "
+       "where there is contact); \"auto\": unlimited")
       .def(std::string("auto"))
       .positive();
   return s;
@@ -576,10 +580,9 @@ int l_minimize(lua_State* L) {
   auto p = minimize_spec().validate(to_raw(L, 2));
   const std::string method = p.str("method");
   RawParams lbfgs;
-  if (method == "lbfgs") {
-    lbfgs["memory"] = static_cast<double>(p.integer("memory"));
-    if (!p.is_auto("max_move")) lbfgs["max_move"] = p.real("max_move");
-  }
+  if (method == "lbfgs") lbfgs["memory"] = static_cast<double>(p.integer("memory"));
+  if ((method == "lbfgs" || method == "newton") && !p.is_auto("max_move"))
+    lbfgs["max_move"] = p.real("max_move");
   const double ketol =
       p.is_auto("ketol") ? std::numeric_limits<double>::infinity() : p.real("ketol");
   long n = sim.minimize(p.real("ftol"), p.integer("max_steps"), method, lbfgs, ketol);

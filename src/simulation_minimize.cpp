@@ -12,9 +12,10 @@ namespace slender {
 long Simulation::minimize(double ftol, long max_steps, const std::string& method,
                           const RawParams& params, double ketol) {
   const bool dynamics = method == "dynamics";
-  if (method != "fire" && method != "lbfgs" && !dynamics)
-    throw InputError("minimize: method must be \"fire\", \"lbfgs\" or \"dynamics\", got \"" +
-                     method + "\"");
+  if (method != "fire" && method != "lbfgs" && method != "newton" && !dynamics)
+    throw InputError(
+        "minimize: method must be \"fire\", \"lbfgs\", \"newton\" or \"dynamics\", got \"" +
+        method + "\"");
   if (dynamics && !integrator_)
     throw InputError(
         "minimize: method \"dynamics\" relaxes with the scene's integrator and its damping; "
@@ -82,9 +83,10 @@ long Simulation::minimize(double ftol, long max_steps, const std::string& method
     extra += ", kinetic energy " + g3(ke) + " (tolerance " + g3(ketol) + ")";
   if (verbose)
     std::printf("minimize: %ld %s steps%s, max |f| = %.3g (tolerance %.3g)\n", taken,
-                method == "fire"    ? "FIRE"
-                : method == "lbfgs" ? "L-BFGS"
-                                    : "damped dynamics",
+                method == "fire"     ? "FIRE"
+                : method == "lbfgs"  ? "L-BFGS"
+                : method == "newton" ? "Newton"
+                                     : "damped dynamics",
                 extra.c_str(), max_force(), ftol);
   return taken;
 }

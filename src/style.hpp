@@ -18,6 +18,7 @@ namespace slender {
 
 class Simulation;
 class Context;
+class Hessian;
 
 // Named arrays a style saves in checkpoints so a restart is bit-identical.
 using StateMap = std::map<std::string, std::vector<double>>;
@@ -128,6 +129,11 @@ class Style {
   virtual std::vector<std::vector<Vec3>> outline() const { return {}; }
   // Per-element arrays (shell faces) this style offers to dumps, e.g. "Ub"; null if none.
   virtual const std::vector<double>* face_values(const std::string&) const { return nullptr; }
+  // The Hessian of this style's energy over the node positions at the current state,
+  // added to H (src/hessian.hpp), for Newton statics (integrator "newton"). Returns false
+  // where the style has none (the solver then names it); a style whose forces do not depend
+  // on the positions at rest (a constant load, a dashpot) returns true and adds nothing.
+  virtual bool add_hessian(Context&, Hessian&) const { return false; }
 
  private:
   std::string style_name_, id_, parameters_;

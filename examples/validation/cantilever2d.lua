@@ -8,10 +8,12 @@
 -- ~0.013 L). The reference is the extensible elastica with the same EA, solved in
 -- lib/elastica.lua by shooting; scripts/elastica.py cross-checks its inextensible limit.
 --   slender cantilever2d.lua -v nodes=81 -v integrator=verlet -v alpha=3
+-- -v integrator=newton solves the statics directly (Newton with exact Hessians,
+-- docs/models.md §9.3): about ten iterations instead of 10^4-10^5 steps.
 local ref = require("lib.elastica")
 
 local N = slender.var("nodes", 41)              -- nodes from the clamp to the tip
-local integ = slender.var("integrator", "gear5") -- verlet | gear4 | gear5 | gear6 | fire
+local integ = slender.var("integrator", "gear5") -- verlet | gear4 | gear5 | gear6 | fire | newton
 local alpha = slender.var("alpha", 0.01)        -- load P L^2 / EI
 local dt = slender.var("dt", "auto")
 local write_output = slender.var("output", false)
@@ -53,7 +55,7 @@ sim:group("tip", { chain = "beam", nodes = { -1 } })
 sim:fix("clamp", "clamp", { group = "base" })
 sim:fix("load", "force/constant", { group = "tip", force = vec(0, -P) })
 -- near-critical damping of the first bending mode (omega_1 = 3.516 sqrt(EI / (rho A L^4)))
-if integ ~= "fire" then sim:fix("drag", "damping/viscous", { gamma = 2 * 3.516 * h }) end
+if integ ~= "fire" and integ ~= "newton" then sim:fix("drag", "damping/viscous", { gamma = 2 * 3.516 * h }) end
 ref.integrator(sim, integ, dt)
 if write_output then
   sim:thermo { every = 2000, columns = { "step", "time", "ke", "energy.stretch", "energy.bend", "fmax" },

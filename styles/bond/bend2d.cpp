@@ -65,6 +65,18 @@ class Bend2dBond : public ChainBondStyle {
     }
     return energy;
   }
+  // E = 1/2 k zeta^2 (the dashpot adds nothing at rest): Hinge2d::add_hessian
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    const auto& x = sim.nodes().x;
+    for (auto* c : chains_now(sim))
+      for (int h = 0; h < c->n_hinges(); ++h) {
+        int a, m, b;
+        c->hinge(h, a, m, b);
+        const Hinge2d g(x[a], x[m], x[b]);
+        g.add_hessian(H, x[a], x[m], x[b], a, m, b, k_, k_ * g.zeta);
+      }
+    return true;
+  }
   double max_frequency(const Context& sim) const override { return bend_frequency(sim, k_); }
 
  private:

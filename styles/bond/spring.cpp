@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "chain_select.hpp"
+#include "hessian.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -42,6 +43,26 @@ class SpringBond : public ChainBondStyle {
           });
     }
     return energy;
+  }
+  // d^2E/dd^2 = k [n n^T + (1 - l0/|d|)(I - n n^T)] with d = x_b - x_a, n = d/|d|
+  // (docs/models.md §9.1); the blocks aa = bb = H, ab = ba = -H.
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    const auto& x = sim.nodes().x;
+    for (auto* c : chains_now(sim))
+      for (int e = 0; e < c->n_edges(); ++e) {
+        const int a = c->edge_tail(e), b = c->edge_head(e);
+        const Vec3 d = x[b] - x[a];
+        const double len = d.norm();
+        const Vec3 n = d / len;
+        const Eigen::Matrix3d nn = n * n.transpose();
+        const Eigen::Matrix3d h =
+            k_ * (nn + (1.0 - c->rest_length[static_cast<std::size_t>(e)] / len) *
+                           (Eigen::Matrix3d::Identity() - nn));
+        H.add(a, a, h);
+        H.add(b, b, h);
+        H.add_pair(a, b, Eigen::Matrix3d(-h));
+      }
+    return true;
   }
   double max_frequency(const Context& sim) const override { return stretch_frequency(sim, k_); }
   double value(const std::string& key) const override {

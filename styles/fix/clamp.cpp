@@ -56,6 +56,8 @@ class ClampFix : public FixStyle {
   // fixes share the mask but keep their prescribed velocity).
   // The bits are (re)set here too: a clamp removed by sim:unfix clears its bits, and the
   // other clamps of the same nodes set theirs again before the next step.
+  // holds components through the mask (the solver drops them); adds no energy
+  bool add_hessian(Context&, Hessian&) const override { return true; }
   unsigned stages() const override { return kSetup; }
   void setup(Context& sim) override {
     auto& mask = *sim.held_components_if_any();

@@ -30,6 +30,8 @@ class ConstantForceFix : public FixStyle {
     nodes_ = sim.group(group_);
     for (int i : nodes_) ref_.push_back(sim.nodes().x[i]);
   }
+  // a force independent of the positions: no second derivative
+  bool add_hessian(Context&, Hessian&) const override { return true; }
   unsigned stages() const override { return kPostForce | kSetup; }
   void setup(Context& sim) override {
     if (nodes_.size() != sim.group(group_).size()) {

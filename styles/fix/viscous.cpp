@@ -17,6 +17,8 @@ class ViscousDampingFix : public FixStyle {
       : gamma_(p.real("gamma")), group_(p.str("group")) {
     sim.group(group_);
   }
+  // -gamma v vanishes at rest and does not depend on the positions
+  bool add_hessian(Context&, Hessian&) const override { return true; }
   unsigned stages() const override { return kPostForce | kSetup; }
   void setup(Context& sim) override { nodes_ = sim.group(group_); }
   double post_force(Context& sim) override {

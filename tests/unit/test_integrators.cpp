@@ -123,7 +123,7 @@ TEST(Integrators, LbfgsFindsTheMinimumWithoutMovingTheClock) {
   EXPECT_NEAR(sim->nodes().x[1].norm(), 1.0, 1e-10);
   EXPECT_EQ(sim->time, 0.0);  // not a time stepper: the scene's clock stands
   EXPECT_EQ(sim->nodes().v[1].norm(), 0.0);
-  EXPECT_THROW(sim->minimize(1e-10, 10, "newton"), InputError);
+  EXPECT_THROW(sim->minimize(1e-10, 10, "simplex"), InputError);
   // max_move caps each iteration's displacement: 0.3 to go at 0.01 per iteration
   sim->nodes().x[1] = Vec3(1.3, 0, 0);
   sim->forces_valid = false;

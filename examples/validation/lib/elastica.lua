@@ -66,18 +66,20 @@ function M.integrator(sim, name, dt)
   elseif name == "gear6" then p.values = 6; sim:integrator("gear", p)
   elseif name == "gear4" then p.values = 4; sim:integrator("gear", p)
   elseif name == "fire" then sim:integrator("fire", p)
-  else error("integrator must be verlet, gear4, gear5, gear6 or fire, got " .. tostring(name), 2) end
+  -- Newton statics (docs/models.md §9.3) needs no time stepper; verlet stands by
+  elseif name == "newton" then sim:integrator("verlet", p)
+  else error("integrator must be verlet, gear4, gear5, gear6, fire or newton, got " .. tostring(name), 2) end
 end
 
--- Relaxes to static equilibrium: FIRE minimisation until the largest nodal force
--- is below tol, or damped dynamics until the kinetic energy is below ke_tol at two
+-- Relaxes to static equilibrium: FIRE (or Newton) minimisation until the largest nodal
+-- force is below tol, or damped dynamics until the kinetic energy is below ke_tol at two
 -- checks in a row. (In damped dynamics the net force includes the drag, so a slowly
 -- creeping overdamped mode has a small net force long before equilibrium; the
 -- kinetic energy has no such blind spot.) Returns the steps taken.
 function M.relax(sim, name, tol, max_steps, ke_tol)
-  if name == "fire" then
-    local steps, ok = sim:minimize { ftol = tol, max_steps = max_steps }
-    assert(ok, "FIRE did not converge in " .. max_steps .. " steps")
+  if name == "fire" or name == "newton" then
+    local steps, ok = sim:minimize { ftol = tol, max_steps = max_steps, method = name }
+    assert(ok, name .. " did not converge in " .. max_steps .. " steps")
     return steps
   end
   local start, below = sim:step(), 0

@@ -1,0 +1,194 @@
+// Exact Hessians of the force styles (checked against central differences of their forces)
+// and Newton-Raphson statics (docs/models.md §9). Covers src/hessian.hpp,
+// styles/integrator/newton.cpp and the add_hessian of spring, bend2d and the fixes.
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "context.hpp"
+#include "helpers.hpp"
+#include "hessian.hpp"
+
+using namespace slender;
+using namespace slender::test;
+
+namespace {
+
+// The assembled Hessian of every force style against -df/dx by central differences, over
+// the free components. Returns the worst error relative to the largest entry.
+double fd_hessian_error(Simulation& sim, double h = 1e-6) {
+  auto& n = sim.nodes();
+  const int dim = sim.dimension();
+  const int N = static_cast<int>(n.size());
+  Hessian H;
+  Context& ctx = sim.context();
+  for (auto& s : sim.bonds()) EXPECT_TRUE(s->add_hessian(ctx, H)) << s->style_name();
+  for (auto& s : sim.fixes()) EXPECT_TRUE(s->add_hessian(ctx, H)) << s->style_name();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * N, 3 * N);
+  for (const auto& t : H.triplets()) K(t.row(), t.col()) += t.value();
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(3 * N, 3 * N);
+  // held components (a clamp) have no force by design: out of both
+  const Property<int>* mask = n.find<int>(kHeldComponents);
+  auto held = [&](int i, int c) { return mask && ((*mask)[i] & (1 << c)); };
+  for (int i = 0; i < N; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (held(i, c)) {
+        K.row(3 * i + c).setZero();
+        K.col(3 * i + c).setZero();
+      }
+  for (int j = 0; j < N; ++j)
+    for (int c = 0; c < dim; ++c) {
+      if (held(j, c)) continue;
+      const double x0 = n.x[j][c];
+      n.x[j][c] = x0 + h;
+      sim.compute_forces();
+      const std::vector<Vec3> fp = n.f;
+      n.x[j][c] = x0 - h;
+      sim.compute_forces();
+      const std::vector<Vec3> fm = n.f;
+      n.x[j][c] = x0;
+      for (int i = 0; i < N; ++i)
+        for (int r = 0; r < dim; ++r)
+          if (!held(i, r)) F(3 * i + r, 3 * j + c) = -(fp[i][r] - fm[i][r]) / (2 * h);
+    }
+  sim.compute_forces();
+  EXPECT_LT((K - K.transpose()).cwiseAbs().maxCoeff(), 1e-12 * K.cwiseAbs().maxCoeff());
+  return (K - F).cwiseAbs().maxCoeff() / K.cwiseAbs().maxCoeff();
+}
+
+// A clamped 2D wire along x with EI = 1, EA = 1e5, length L = 1 from the staggered clamp
+// (the cantilever of examples/validation/cantilever2d.lua), nodes + 1 nodes, a force on the
+// tip.
+std::unique_ptr<Simulation> cantilever(int nodes, Vec3 tip_force, double lateral = 0.0) {
+  auto sim = std::make_unique<Simulation>(2, 1);
+  sim->verbose = false;
+  const double h = 1.0 / (nodes - 0.5);
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= nodes; ++i) {
+    const double x = -h / 2 + i * h;
+    pts.emplace_back(x, lateral * x * x, 0.0);
+  }
+  sim->add_chain("beam", pts, h, false);
+  sim->add_bond("spring", P({{"k", 1e5 / h}}));
+  sim->add_bond("bend2d", P({{"k", 1.0 / h}}));
+  sim->set_group("base", {0, 1});
+  sim->set_group("tip", {nodes});
+  sim->add_fix("clamp", "clamp", P({{"group", std::string("base")}}));
+  sim->add_fix("load", "force/constant",
+               P({{"group", std::string("tip")},
+                  {"force", std::vector<double>{tip_force.x(), tip_force.y()}}}));
+  return sim;
+}
+
+}  // namespace
+
+TEST(Hessian, SpringMatchesFiniteDifferencesOfItsForces) {
+  for (int dim : {2, 3})
+    for (bool closed : {false, true}) {
+      Simulation sim(dim, 1);
+      sim.add_chain("w", wiggly_chain(7, dim, 3, 0.4), 1.0, closed);
+      sim.add_bond("spring", P({{"k", 40.0}}));
+      EXPECT_LT(fd_hessian_error(sim), 1e-7) << "dim " << dim << " closed " << closed;
+    }
+}
+
+TEST(Hessian, Bend2dMatchesFiniteDifferencesOfItsForces) {
+  for (bool closed : {false, true}) {
+    Simulation sim(2, 1);
+    // turning angles up to about 1 rad, past the series branch of the angle
+    sim.add_chain("w", wiggly_chain(8, 2, 11, 0.45), 1.0, closed);
+    sim.add_bond("bend2d", P({{"k", 3.0}}));
+    EXPECT_LT(fd_hessian_error(sim), 1e-7) << "closed " << closed;
+  }
+}
+
+TEST(Hessian, WireWithLoadsMatchesFiniteDifferences) {
+  auto sim = cantilever(9, Vec3(0.3, -2.0, 0), 0.4);
+  EXPECT_LT(fd_hessian_error(*sim), 1e-7);
+}
+
+TEST(Newton, CantileverConvergesQuadraticallyToTheLbfgsAnswer) {
+  // alpha = P L^2 / EI = 3: a large deflection
+  auto newton = cantilever(21, Vec3(0, -3.0, 0));
+  auto lbfgs = cantilever(21, Vec3(0, -3.0, 0));
+  const long it = newton->minimize(1e-8, 200, "newton");
+  EXPECT_LT(newton->max_force(), 1e-8);
+  EXPECT_LT(it, 40);
+  const long it_lbfgs = lbfgs->minimize(1e-8, 200000, "lbfgs");
+  ASSERT_LT(lbfgs->max_force(), 1e-8);
+  EXPECT_GT(it_lbfgs, 5 * it);
+  const Vec3 tn = newton->nodes().x[21], tl = lbfgs->nodes().x[21];
+  EXPECT_LT((tn - tl).norm(), 1e-6);
+  EXPECT_LT(tn.y(), -0.5);  // bent far (the elastica's tip drops 0.79 L at alpha = 3)
+  EXPECT_EQ(newton->time, 0.0);
+
+  // the last iterations: |f| falls at least quadratically once it is small
+  auto sim = cantilever(21, Vec3(0, -3.0, 0));
+  sim->set_integrator("newton", {});
+  auto* integ = sim->integrator();
+  integ->setup(*sim);
+  std::vector<double> fmax{sim->max_force()};
+  for (int k = 0; k < 40 && fmax.back() > 1e-8; ++k) {
+    integ->step(*sim);
+    fmax.push_back(sim->max_force());
+  }
+  ASSERT_LT(fmax.back(), 1e-8);
+  int quadratic = 0;
+  for (size_t k = 1; k < fmax.size(); ++k)
+    if (fmax[k - 1] < 1e-2 && fmax[k] > 1e-9) {
+      EXPECT_LT(fmax[k], 100.0 * fmax[k - 1] * fmax[k - 1]) << "iteration " << k;
+      ++quadratic;
+    }
+  EXPECT_GE(quadratic, 1);
+}
+
+TEST(Newton, BucklesPastEulersLoadOntoTheElasticaAndCountsTheUnstableMode) {
+  // Clamped-free column under an axial tip load P = 1.1518 P_cr, P_cr = pi^2 EI / (4 L^2):
+  // the elastica buckles with end slope 60 degrees, k = sin 30 degrees, and the tip moves
+  // sideways by delta = 2 k L / K(k) = 0.5932 L (Timoshenko & Gere, inextensible).
+  const double k = 0.5, Kk = std::comp_ellint_1(k);
+  const double ratio = std::pow(2.0 * Kk / M_PI, 2.0);
+  const double P = ratio * M_PI * M_PI / 4.0;
+  auto sim = cantilever(41, Vec3(-P, 0, 0), 1e-4);  // a small bow breaks the symmetry
+  sim->set_integrator("newton", {});
+  auto* integ = sim->integrator();
+  integ->setup(*sim);
+  // the first iteration compresses the springs (unloaded at the start, they have no
+  // geometric stiffness yet); then the near-straight column is past its first critical
+  // load only: one unstable direction, and the step is shifted
+  double most = 0.0, shifted = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    integ->step(*sim);
+    most = std::max(most, integ->value("negative_pivots"));
+    shifted = std::max(shifted, integ->value("shift"));
+  }
+  EXPECT_EQ(most, 1.0);
+  EXPECT_GT(shifted, 0.0);
+  sim->set_integrator("verlet", {});
+  const long it = sim->minimize(1e-8, 400, "newton");
+  EXPECT_LT(it, 400);
+  ASSERT_LT(sim->max_force(), 1e-8);
+  const double delta = std::abs(sim->nodes().x[41].y());
+  EXPECT_NEAR(delta, 2.0 * k / Kk, 0.01);
+  // the buckled state is stable: a step there finds no negative pivot
+  sim->set_integrator("newton", {});
+  sim->integrator()->setup(*sim);
+  sim->integrator()->step(*sim);
+  EXPECT_EQ(sim->integrator()->value("negative_pivots"), 0.0);
+  EXPECT_EQ(sim->integrator()->value("shift"), 0.0);
+}
+
+TEST(Newton, NamesTheStyleWithoutAHessian) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.add_chain("w", wiggly_chain(6, 2, 2, 0.2), 1.0, false);
+  sim.add_bond("spring", P({{"k", 10.0}}));
+  sim.add_bond("bend2d/hysteresis", P({{"k", 1.0}, {"yield_curvature", 0.5}}));
+  try {
+    sim.minimize(1e-8, 10, "newton");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bond style 'bend2d/hysteresis' has none"),
+              std::string::npos)
+        << e.what();
+  }
+}

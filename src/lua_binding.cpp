@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "continuation.hpp"
 #include "file_check.hpp"
 #include "registry.hpp"
 #include "scene_build.hpp"
@@ -250,11 +251,46 @@ ParamSpec stiffness_spec() {
   return s;
 }
 
+ParamSpec continuation_spec() {
+  ParamSpec s("command", "continuation",
+              "sim:continuation{...}: follows static equilibria as the load of a fix is scaled "
+              "by lambda, through limit points (pseudo-arc-length, Newton with the exact "
+              "Hessians, docs/models.md §9.4), and reports where the count of unstable "
+              "directions changes (limit and bifurcation points); returns the points taken and "
+              "the last lambda");
+  s.string("load", "id of the fix whose load lambda scales (force/constant)").required();
+  s.real("lambda0",
+         "load factor at the start (the state must be, or Newton must reach, an "
+         "equilibrium there)")
+      .def(0.0);
+  s.real("lambda_min", "stop below this load factor").def(-1e300);
+  s.real("lambda_max", "stop above this load factor").def(1e300);
+  s.real("ds",
+         "first arc-length step (docs/models.md §9.4: displacement, with lambda weighed "
+         "by the displacement a unit of it causes at the start)")
+      .def(0.05)
+      .positive();
+  s.real("ds_max", "largest arc-length step").def(0.5).positive();
+  s.real("ds_min", "smallest arc-length step before giving up").def(1e-8).positive();
+  s.integer("points", "converged points to take at most").def(100.0).min(1);
+  s.real("ftol", "largest nodal force at a converged point").def(1e-8).positive();
+  s.integer("max_iterations", "corrector iterations before the step is halved")
+      .def(25.0)
+      .min(1)
+      .max(10000);
+  s.add("callback", ParamType::Function,
+        "function(sim, point) called at the start and at every converged point, point = "
+        "{index, lambda, negative_pivots, iterations, ds, event, critical_lambda} (event: \"limit "
+        "point\", \"bifurcation point\" or nil, crossed since the last point; critical_lambda: "
+        "where, bisected on the arc length); return true to stop");
+  return s;
+}
+
 // The command declarations join the catalog, so `slender --help wire` and
 // docs/styles.md describe them from the same declarations that validate decks.
 [[maybe_unused]] const bool commands_registered = [] {
   for (auto* spec : {&simulation_spec, &wire_spec, &group_spec, &thermo_spec, &guard_spec,
-                     &run_spec, &minimize_spec, &stiffness_spec, &mesh_spec}) {
+                     &run_spec, &minimize_spec, &continuation_spec, &stiffness_spec, &mesh_spec}) {
     ParamSpec s = (*spec)();
     Catalog::entries().push_back(CatalogEntry{"command", s.name, *spec});
   }
@@ -593,6 +629,70 @@ int l_minimize(lua_State* L) {
   return 2;
 }
 
+int l_continuation(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  auto p = continuation_spec().validate(to_raw(L, 2));
+  ContinuationOptions opt;
+  opt.load = p.str("load");
+  opt.lambda0 = p.real("lambda0");
+  opt.lambda_min = p.real("lambda_min");
+  opt.lambda_max = p.real("lambda_max");
+  opt.ds = p.real("ds");
+  opt.ds_max = p.real("ds_max");
+  opt.ds_min = p.real("ds_min");
+  opt.points = p.integer("points");
+  opt.ftol = p.real("ftol");
+  opt.max_iterations = static_cast<int>(p.integer("max_iterations"));
+  int cb_ref = LUA_NOREF;
+  lua_getfield(L, 2, "callback");
+  if (lua_isfunction(L, -1)) {
+    cb_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+  } else {
+    const bool bad = !lua_isnil(L, -1);
+    lua_pop(L, 1);
+    if (bad) throw InputError("continuation: callback must be a function");
+  }
+  struct Unref {
+    lua_State* L;
+    int ref;
+    ~Unref() { luaL_unref(L, LUA_REGISTRYINDEX, ref); }
+  } unref{L, cb_ref};
+  if (cb_ref != LUA_NOREF)
+    opt.callback = [L, cb_ref](Simulation&, const ContinuationPoint& pt) {
+      lua_rawgeti(L, LUA_REGISTRYINDEX, cb_ref);
+      lua_pushvalue(L, 1);  // the simulation userdata
+      lua_createtable(L, 0, 6);
+      lua_pushinteger(L, pt.index);
+      lua_setfield(L, -2, "index");
+      lua_pushnumber(L, pt.lambda);
+      lua_setfield(L, -2, "lambda");
+      lua_pushinteger(L, pt.negative_pivots);
+      lua_setfield(L, -2, "negative_pivots");
+      lua_pushinteger(L, pt.iterations);
+      lua_setfield(L, -2, "iterations");
+      lua_pushnumber(L, pt.ds);
+      lua_setfield(L, -2, "ds");
+      if (!pt.event.empty()) {
+        lua_pushstring(L, pt.event.c_str());
+        lua_setfield(L, -2, "event");
+        lua_pushnumber(L, pt.critical_lambda);
+        lua_setfield(L, -2, "critical_lambda");
+      }
+      if (lua_pcall(L, 2, 1, 0) != LUA_OK) {
+        std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in callback";
+        lua_pop(L, 1);
+        throw LocatedError(msg);
+      }
+      const bool stop = lua_toboolean(L, -1);
+      lua_pop(L, 1);
+      return stop;
+    };
+  const ContinuationResult r = continuation(sim, opt);
+  lua_pushinteger(L, r.points);
+  lua_pushnumber(L, r.lambda);
+  return 2;
+}
+
 int l_lowest_stiffness(lua_State* L) {
   Simulation& sim = sim_arg(L);
   auto p = stiffness_spec().validate(to_raw(L, 2));
@@ -811,6 +911,7 @@ const luaL_Reg kSimMethods[] = {SLENDER_METHOD("wire", l_wire),
                                 SLENDER_METHOD("guard", l_guard),
                                 SLENDER_METHOD("run", l_run),
                                 SLENDER_METHOD("minimize", l_minimize),
+                                SLENDER_METHOD("continuation", l_continuation),
                                 SLENDER_METHOD("lowest_stiffness", l_lowest_stiffness),
                                 SLENDER_METHOD("value", l_value),
                                 SLENDER_METHOD("write_dump", l_write_dump),

@@ -195,6 +195,9 @@ class FixStyle : public Style {
   // Adds forces; returns the potential energy of conservative fixes (else 0).
   virtual double post_force(Context&) { return 0.0; }
   virtual void end_of_step(Context&) {}
+  // Continuation (sim:continuation, docs/models.md §9.4): scales this fix's load linearly
+  // by lambda (1: the load as the deck gave it). False where the fix has no load to scale.
+  virtual bool set_load_factor(double) { return false; }
   // Fixes report their contacts' frequency as pairs do (walls in contact now).
   bool measures_frequency() const override { return true; }
 };

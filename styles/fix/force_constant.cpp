@@ -40,7 +40,11 @@ class ConstantForceFix : public FixStyle {
       for (int i : nodes_) ref_.push_back(sim.nodes().x[i]);
     }
   }
-  Vec3 current(double t) const { return force_ + rate_ * (t - t0_); }
+  Vec3 current(double t) const { return load_factor_ * (force_ + rate_ * (t - t0_)); }
+  bool set_load_factor(double lambda) override {
+    load_factor_ = lambda;
+    return true;
+  }
   double post_force(Context& sim) override {
     const Vec3 F = current(sim.time());
     auto& f = sim.nodes().f;
@@ -67,6 +71,7 @@ class ConstantForceFix : public FixStyle {
     st["t0"] = {t0_};
     st["force"] = {force_.x(), force_.y(), force_.z()};
     st["rate"] = {rate_.x(), rate_.y(), rate_.z()};
+    st["load_factor"] = {load_factor_};
     std::vector<double> r;
     for (auto& v : ref_) r.insert(r.end(), {v.x(), v.y(), v.z()});
     st["ref"] = r;
@@ -77,6 +82,9 @@ class ConstantForceFix : public FixStyle {
     force_ = Vec3(fo[0], fo[1], fo[2]);
     auto& ra = saved_array(st, "rate", 3);
     rate_ = Vec3(ra[0], ra[1], ra[2]);
+    // (checkpoints written before continuation existed have no load factor: 1)
+    if (auto it = st.find("load_factor"); it != st.end() && !it->second.empty())
+      load_factor_ = it->second[0];
     auto& r = saved_array(st, "ref");
     ref_.resize(r.size() / 3);
     for (size_t i = 0; i < ref_.size(); ++i) ref_[i] = Vec3(r[3 * i], r[3 * i + 1], r[3 * i + 2]);
@@ -102,6 +110,7 @@ class ConstantForceFix : public FixStyle {
   std::string group_;
   Vec3 force_, rate_;
   double t0_;
+  double load_factor_ = 1.0;  // lambda of a continuation (docs/models.md §9.4)
   int dim_ = 3;
   std::vector<int> nodes_;
   std::vector<Vec3> ref_;

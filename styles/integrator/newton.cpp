@@ -6,15 +6,14 @@
 // is used instead, mu grown until the factorisation has no negative pivot (Levenberg).
 // The count of negative pivots of K itself is its inertia: nonzero means the state is
 // not a stable equilibrium. Used by sim:minimize{method = "newton"}.
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
-#include "context.hpp"
-#include "hessian.hpp"
 #include "registry.hpp"
 #include "simulation.hpp"
+#include "statics.hpp"
 
 namespace slender {
 
@@ -56,41 +55,24 @@ class NewtonMinimizer : public IntegratorStyle {
               "(generalised coordinates): use sim:minimize{method = \"fire\"}");
     for (auto& v : sim.nodes().v) v.setZero();
     if (!sim.forces_valid) sim.compute_forces();
-    assemble(sim);  // names a style without a Hessian before the first step
+    system_ = std::make_unique<StaticSystem>(sim);
+    system_->assemble();  // names a style without a Hessian before the first step
     boost_ = 0.0;
   }
 
   void step(Simulation& sim) override {
     auto& n = sim.nodes();
     const size_t N = n.n_owned();
-    const Eigen::SparseMatrix<double> K = assemble(sim);
-    const long nf = K.rows();
-    Eigen::VectorXd f(nf);
-    for (size_t i = 0; i < N; ++i)
-      for (int c = 0; c < 3; ++c)
-        if (free_[3 * i + c] >= 0) f[free_[3 * i + c]] = n.f[i][c];
+    system_->assemble();
+    const Eigen::VectorXd f = system_->forces();
     // Newton step, or the Levenberg step where K is not positive definite
-    double scale = 0.0;
-    for (long k = 0; k < nf; ++k) scale = std::max(scale, std::abs(K.coeff(k, k)));
-    if (scale == 0.0) scale = 1.0;
-    Eigen::VectorXd dx;
+    const double scale = system_->diagonal_scale();
     double mu = boost_;
     for (int tries = 0;; ++tries) {
-      Eigen::SparseMatrix<double> A = K;
-      if (mu > 0) {
-        for (long k = 0; k < nf; ++k) A.coeffRef(k, k) += mu;
-      }
-      ldlt_.compute(A);
+      const long negative = system_->factorize(mu);
       ++factorizations_;
-      long negative = 0;
-      const bool ok = ldlt_.info() == Eigen::Success;
-      if (ok)
-        for (long k = 0; k < nf; ++k) negative += ldlt_.vectorD()[k] <= 0.0;
-      if (mu == 0.0) negative_pivots_ = ok ? negative : -1;
-      if (ok && negative == 0) {
-        dx = ldlt_.solve(f);
-        break;
-      }
+      if (mu == 0.0) negative_pivots_ = negative;
+      if (negative == 0) break;
       if (tries > 60)
         throw InputError(
             "integrator 'newton': the Hessian stays singular however it is shifted (NaN "
@@ -98,13 +80,10 @@ class NewtonMinimizer : public IntegratorStyle {
       mu = mu == 0.0 ? 1e-8 * scale : 10.0 * mu;
     }
     shift_ = mu;
-
-    std::vector<Vec3> d(N, Vec3::Zero());
-    for (size_t i = 0; i < N; ++i)
-      for (int c = 0; c < 3; ++c)
-        if (free_[3 * i + c] >= 0) d[i][c] = dx[free_[3 * i + c]];
+    const Eigen::VectorXd dx = system_->solve(f);
+    const std::vector<Vec3> d = system_->per_node(dx);
     double dmax = 0.0;
-    for (auto& v : d) dmax = std::max(dmax, v.norm());
+    for (size_t i = 0; i < N; ++i) dmax = std::max(dmax, d[i].norm());
     double alpha = dmax > max_move_ ? max_move_ / dmax : 1.0;
     const double slope = -f.dot(dx);  // g . d, negative
     x0_.assign(n.x.begin(), n.x.begin() + static_cast<long>(N));
@@ -143,47 +122,8 @@ class NewtonMinimizer : public IntegratorStyle {
   }
 
  private:
-  // K over the free components (not held by a clamp, not z in 2D); free_[3 i + c] is the
-  // row of component c of node i, or -1.
-  Eigen::SparseMatrix<double> assemble(Simulation& sim) {
-    H_.clear();
-    Context& ctx = sim.context();
-    auto add = [&](const auto& list) {
-      for (const auto& s : list)
-        if (!s->add_hessian(ctx, H_))
-          throw InputError(
-              "integrator 'newton' needs the exact Hessian of every force style, "
-              "and " +
-              std::string(s->family_name()) + " style '" + s->style_name() +
-              "' has none: use sim:minimize{method = \"lbfgs\"} or \"fire\"");
-    };
-    add(sim.shells());
-    add(sim.bonds());
-    add(sim.pairs());
-    add(sim.fixes());
-    auto& n = sim.nodes();
-    const size_t N = n.n_owned();
-    const Property<int>* mask = n.find<int>(kHeldComponents);
-    free_.assign(3 * n.size(), -1);
-    int nf = 0;
-    for (size_t i = 0; i < N; ++i)
-      for (int c = 0; c < sim.dimension(); ++c)
-        if (!mask || !((*mask)[i] & (1 << c))) free_[3 * i + c] = nf++;
-    std::vector<Hessian::Triplet> t;
-    t.reserve(H_.triplets().size());
-    for (const auto& e : H_.triplets()) {
-      const int r = free_[static_cast<size_t>(e.row())], c = free_[static_cast<size_t>(e.col())];
-      if (r >= 0 && c >= 0) t.emplace_back(r, c, e.value());
-    }
-    Eigen::SparseMatrix<double> K(nf, nf);
-    K.setFromTriplets(t.begin(), t.end());
-    return K;
-  }
-
   double max_move_;
-  Hessian H_;
-  std::vector<int> free_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  std::unique_ptr<StaticSystem> system_;
   std::vector<Vec3> x0_;
   double boost_ = 0.0, shift_ = 0.0;
   long negative_pivots_ = 0, evaluations_ = 0, factorizations_ = 0;

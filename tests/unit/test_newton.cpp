@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "context.hpp"
+#include "continuation.hpp"
 #include "helpers.hpp"
 #include "hessian.hpp"
 
@@ -191,4 +192,104 @@ TEST(Newton, NamesTheStyleWithoutAHessian) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(Continuation, FollowsTheVonMisesTrussThroughBothLimitPoints) {
+  // two springs k from the supports (-a, 0) and (a, 0) to an apex at (0, h), loaded downwards
+  // by lambda: along the path P(w) = 2 k (L0 - L) (h - w) / L with L = sqrt(a^2 + (h - w)^2)
+  // for the apex's descent w; P rises to a limit point, falls below zero as the truss snaps
+  // through, and rises again past the second limit point once it hangs inverted.
+  const double a = 1.0, h = 0.5, k = 100.0, L0 = std::hypot(a, h);
+  auto load = [&](double w) {
+    const double L = std::hypot(a, h - w);
+    return 2.0 * k * (L0 - L) * (h - w) / L;
+  };
+  // the analytic limit load (the maximum of P over 0 < w < h)
+  double pmax = 0.0;
+  for (int i = 1; i < 200000; ++i) pmax = std::max(pmax, load(h * i / 200000.0));
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.add_chain("truss", {Vec3(-a, 0, 0), Vec3(0, h, 0), Vec3(a, 0, 0)}, 1.0, false);
+  sim.add_bond("spring", P({{"k", k}}));
+  sim.set_group("supports", {0, 2});
+  sim.set_group("apex", {1});
+  sim.add_fix("hold", "clamp", P({{"group", std::string("supports")}}));
+  sim.add_fix("push", "force/constant",
+              P({{"group", std::string("apex")}, {"force", std::vector<double>{0.0, -1.0}}}));
+  ContinuationOptions opt;
+  opt.load = "push";
+  opt.ds = 0.02;
+  opt.ds_max = 0.05;
+  opt.points = 2000;
+  opt.ftol = 1e-10;
+  double worst = 0.0, top = 0.0, bottom = 0.0;
+  std::vector<long> pivots;
+  std::vector<std::string> events;
+  std::vector<double> criticals;
+  opt.callback = [&](Simulation& s, const ContinuationPoint& p) {
+    const double w = h - s.nodes().x[1].y();
+    worst = std::max(worst, std::abs(p.lambda - load(w)) / pmax);
+    EXPECT_NEAR(s.nodes().x[1].x(), 0.0, 1e-9);
+    if (w < h) top = std::max(top, p.lambda);
+    bottom = std::min(bottom, p.lambda);
+    if (pivots.empty() || pivots.back() != p.negative_pivots) pivots.push_back(p.negative_pivots);
+    if (!p.event.empty()) {
+      events.push_back(p.event);
+      criticals.push_back(p.critical_lambda);
+    }
+    return w > 2.5 * h;  // well past the inverted state
+  };
+  const ContinuationResult r = continuation(sim, opt);
+  EXPECT_LT(worst, 1e-9);  // every converged point lies on the analytic path
+  EXPECT_LE(top, pmax * (1 + 1e-9));
+  EXPECT_GT(top, 0.97 * pmax);      // the path went over the top...
+  EXPECT_LT(bottom, -0.97 * pmax);  // ... and down to the mirrored limit point
+  EXPECT_EQ(r.limit_points, 2);
+  EXPECT_EQ(r.bifurcation_points, 0);
+  EXPECT_EQ(pivots, (std::vector<long>{0, 1, 0}));
+  EXPECT_EQ(events, (std::vector<std::string>{"limit point", "limit point"}));
+  // located by bisection: the limit loads +-P_max
+  ASSERT_EQ(criticals.size(), 2u);
+  EXPECT_NEAR(criticals[0], pmax, 1e-6 * pmax);
+  EXPECT_NEAR(criticals[1], -pmax, 1e-6 * pmax);
+  EXPECT_GT(r.lambda, 0.0);  // rising again on the hanging branch
+}
+
+TEST(Continuation, FindsEulersBifurcationOnAStraightColumn) {
+  // a perfectly straight clamped-free column under a compressive tip load lambda: the
+  // straight state stays an equilibrium, and one direction becomes unstable at
+  // P_cr = pi^2 EI / (4 L^2) without lambda turning back: a bifurcation point
+  auto sim = cantilever(31, Vec3(-1.0, 0, 0));
+  ContinuationOptions opt;
+  opt.load = "load";
+  opt.ds = 1e-5;  // the axial shortening is small (EA = 1e5): small arc-length steps
+  opt.ds_max = 2e-5;
+  opt.points = 1000;
+  opt.lambda_max = 4.0;
+  std::vector<double> at;
+  double before = 0.0;
+  opt.callback = [&](Simulation&, const ContinuationPoint& p) {
+    if (p.event == "bifurcation point") at = {before, p.critical_lambda, p.lambda};
+    before = p.lambda;
+    return false;
+  };
+  const ContinuationResult r = continuation(*sim, opt);
+  EXPECT_EQ(r.bifurcation_points, 1);
+  EXPECT_EQ(r.limit_points, 0);
+  ASSERT_EQ(at.size(), 3u);
+  const double pcr = M_PI * M_PI / 4.0;
+  EXPECT_LT(at[0], at[1]);
+  EXPECT_LT(at[1], at[2]);
+  // the discrete column's critical load, within its discretisation error of Euler's
+  EXPECT_NEAR(at[1], pcr, 2e-3 * pcr);
+  EXPECT_NEAR(sim->nodes().x[31].y(), 0.0, 1e-9);  // still straight
+}
+
+TEST(Continuation, RefusesAFixWithoutALoad) {
+  auto sim = cantilever(5, Vec3(0, -1, 0));
+  ContinuationOptions opt;
+  opt.load = "clamp";
+  EXPECT_THROW(continuation(*sim, opt), InputError);
+  opt.load = "nothing";
+  EXPECT_THROW(continuation(*sim, opt), InputError);
 }

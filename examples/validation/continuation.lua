@@ -1,0 +1,80 @@
+-- Purpose: equilibrium paths by pseudo-arc-length continuation (docs/models.md §9.4), with
+-- their limit and bifurcation points against closed forms: -v case=truss follows a von
+-- Mises truss through both limit points of its snap-through (P_max from P(w)); -v
+-- case=column loads a straight clamped-free 2D column and finds Euler's bifurcation
+-- P_cr = pi^2 EI / (4 L^2) from the count of negative pivots of the stiffness matrix.
+-- Expected run time: well under a second for either case (defaults).
+--   slender continuation.lua -v case=column -v nodes=81
+local case = slender.var("case", "truss")
+assert(case == "truss" or case == "column", "case must be truss or column")
+local check = slender.var("check")
+local fast = slender.var("fast", false)  -- the suite's fast mode: a coarser column
+local t0 = slender.clock()
+
+if case == "truss" then
+  -- supports at (+-a, 0), apex at (0, h), springs k; the apex load lambda points down.
+  -- Along the path P(w) = 2 k (L0 - L) (h - w) / L, L = sqrt(a^2 + (h - w)^2).
+  local a, h, k = 1.0, slender.var("rise", 0.5), 100.0
+  local L0 = math.sqrt(a * a + h * h)
+  local function load(w)
+    local L = math.sqrt(a * a + (h - w) ^ 2)
+    return 2 * k * (L0 - L) * (h - w) / L
+  end
+  -- the analytic limit load, the maximum of P(w) over (0, h), by golden-section search
+  local lo, hi = 0.0, h
+  for _ = 1, 200 do
+    local m1, m2 = lo + 0.382 * (hi - lo), lo + 0.618 * (hi - lo)
+    if load(m1) < load(m2) then lo = m1 else hi = m2 end
+  end
+  local pmax = load(0.5 * (lo + hi))
+  local sim = slender.simulation { dimension = 2, seed = 1 }
+  sim:wire { name = "truss", points = { { -a, 0 }, { 0, h }, { a, 0 } } }
+  sim:bond("spring", { k = k })
+  sim:group("supports", { chain = "truss", nodes = { 1, 3 } })
+  sim:group("apex", { chain = "truss", nodes = { 2 } })
+  sim:fix("hold", "clamp", { group = "supports" })
+  sim:fix("push", "force/constant", { group = "apex", force = { 0, -1 } })
+  local limits, worst = {}, 0.0
+  local points, lambda = sim:continuation { load = "push", ds = 0.02, ds_max = 0.05, points = 2000,
+    ftol = 1e-10, callback = function(s, p)
+      local _, y = s:position(2)
+      worst = math.max(worst, math.abs(p.lambda - load(h - y)) / pmax)
+      if p.event then limits[#limits + 1] = p.critical_lambda end
+      return h - y > 2.5 * h
+    end }
+  local err = math.max(math.abs(limits[1] - pmax), math.abs(limits[2] + pmax)) / pmax
+  slender.result { case = "truss", points = points, lambda = lambda, limit_points = #limits,
+    p_max = pmax, first_limit = limits[1], second_limit = limits[2], limit_error = err,
+    path_error = worst, wall_s = slender.clock() - t0 }
+  if check then
+    assert(#limits == 2, "expected two limit points, found " .. #limits)
+    assert(err < check and worst < check,
+           string.format("limit error %.3e, path error %.3e exceed %.3e", err, worst, check))
+  end
+else
+  -- the clamped cantilever of cantilever2d.lua (EI = 1, EA = 1e5, L = 1, staggered clamp)
+  local N = slender.var("nodes", fast and 21 or 41)
+  local h = 1.0 / (N - 0.5)
+  local sim = slender.simulation { dimension = 2, seed = 1 }
+  sim:wire { name = "column", nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
+  sim:bond("spring", { k = 1e5 / h })
+  sim:bond("bend2d", { k = 1 / h })
+  sim:group("base", { chain = "column", nodes = { 1, 2 } })
+  sim:group("tip", { chain = "column", nodes = { -1 } })
+  sim:fix("clamp", "clamp", { group = "base" })
+  sim:fix("load", "force/constant", { group = "tip", force = { -1, 0 } })
+  local pcr = math.pi ^ 2 / 4
+  local found
+  -- the axial shortening per unit load is L / EA = 1e-5: arc-length steps of that order
+  local points = sim:continuation { load = "load", ds = 1e-5, ds_max = 2e-5, lambda_max = 4, points = 1000,
+    callback = function(_, p)
+      if p.event == "bifurcation point" then found = p.critical_lambda end
+    end }
+  local err = found and math.abs(found - pcr) / pcr or 1
+  slender.result { case = "column", nodes = N, points = points, critical = found or -1, euler = pcr,
+    rel_error = err, wall_s = slender.clock() - t0 }
+  if check then
+    assert(found, "no bifurcation point found below lambda = 4")
+    assert(err < check, string.format("relative error %.3e exceeds %.3e", err, check))
+  end
+end

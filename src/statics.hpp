@@ -1,0 +1,48 @@
+// The static system of a scene over its free position components (docs/models.md §9): the
+// Hessian K of the potential energy, assembled from every force style's exact second
+// derivatives, its sparse LDL^T factorisation and inertia, and the forces as a vector.
+// Shared by the Newton minimiser (styles/integrator/newton.cpp) and continuation
+// (src/continuation.cpp).
+#pragma once
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "hessian.hpp"
+#include "nodes.hpp"
+
+namespace slender {
+
+class Simulation;
+
+class StaticSystem {
+ public:
+  explicit StaticSystem(Simulation& sim) : sim_(sim) {}
+  // K at the current state over the components that are free now (not held by a clamp or a
+  // driven node, not z in 2D). Throws InputError naming the first force style that has no
+  // Hessian.
+  const Eigen::SparseMatrix<double>& assemble();
+  const Eigen::SparseMatrix<double>& matrix() const { return K_; }
+  long size() const { return K_.rows(); }
+  // Factorises K + mu I. Returns its count of negative pivots (0 where positive
+  // definite), or -1 where the factorisation met a zero pivot.
+  long factorize(double mu = 0.0);
+  // (K + mu I)^{-1} r with the last factorisation
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return ldlt_.solve(r); }
+  // The nodal forces of the last evaluation on the free components.
+  Eigen::VectorXd forces() const;
+  // A vector over the free components as one displacement per node (held ones 0).
+  std::vector<Vec3> per_node(const Eigen::VectorXd& v) const;
+  // The largest |K_ii| (a scale for shifts).
+  double diagonal_scale() const;
+
+ private:
+  Simulation& sim_;
+  Hessian H_;
+  std::vector<int> free_;  // row of component c of node i at 3 i + c, or -1
+  Eigen::SparseMatrix<double> K_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+};
+
+}  // namespace slender

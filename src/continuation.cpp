@@ -102,6 +102,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
   if (opt.callback && opt.callback(sim, pt)) return res;
   double ds = opt.ds;
   std::vector<Vec3> x0, x1;
+  bool switched = false, skip_event = false;
   // From (x0, l0) along the unit tangent (t, t_l), by the arc length step: the tangent
   // predictor, then Newton on the forces and the arc-length condition
   // t . u + psi^2 t_l dl = step (linear, so it stays satisfied). Leaves the state at the
@@ -172,7 +173,11 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
     }
     std::string event;
     double critical = lambda;
-    if (nneg >= 0 && nneg != neg) {
+    bool switch_now = false;
+    if (skip_event) {  // the first step on a new branch: its inertia is the new reference
+      skip_event = false;
+      if (nneg >= 0) neg = nneg;
+    } else if (nneg >= 0 && nneg != neg) {
       const bool limit = tl1 * tl < 0;
       event = limit ? "limit point" : "bifurcation point";
       ++(limit ? res.limit_points : res.bifurcation_points);
@@ -192,10 +197,13 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
           hi = mid;
         critical = lambda;
       }
-      for (size_t i = 0; i < N; ++i) n.x[i] = x1[i];
-      lambda = l1;
-      set_lambda(lambda);
-      sim.compute_forces();
+      switch_now = !limit && opt.switch_branch && !switched;
+      if (!switch_now) {
+        for (size_t i = 0; i < N; ++i) n.x[i] = x1[i];
+        lambda = l1;
+        set_lambda(lambda);
+        sim.compute_forces();
+      }
       if (sim.verbose)
         std::printf("continuation: %s at lambda = %s (negative pivots %ld -> %ld)\n", event.c_str(),
                     g6(critical).c_str(), neg, nneg);
@@ -203,6 +211,31 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
     }
     tx = tx1;
     tl = tl1;
+    if (switch_now) {
+      // Branch switching (§9.4): from the bisected critical state, along the null vector
+      // of K (inverse iteration), with lambda held at first: the bifurcated branch of a
+      // symmetric (pitchfork) bifurcation leaves the critical point that way.
+      switched = true;
+      skip_event = true;
+      sys.assemble();
+      double shift = 0.0;
+      while (sys.factorize(shift) < 0)
+        shift = shift == 0.0 ? 1e-12 * sys.diagonal_scale() : 10 * shift;
+      Eigen::VectorXd phi(sys.size());
+      for (long i = 0; i < phi.size(); ++i) phi[i] = 1.0 + 0.5 * std::sin(1.7 * double(i) + 0.3);
+      for (int it = 0; it < 20; ++it) {
+        phi = sys.solve(phi);
+        phi /= phi.norm();
+      }
+      long big = 0;
+      phi.cwiseAbs().maxCoeff(&big);
+      if (phi[big] < 0) phi = -phi;  // a sign that does not depend on the round-off
+      tx = phi;
+      tl = 0.0;
+      if (sim.verbose)
+        std::printf("continuation: switching to the bifurcated branch at lambda = %s\n",
+                    g6(lambda).c_str());
+    }
     if (iters <= 3)
       ds = std::min(1.5 * ds, opt.ds_max);
     else if (iters > 8)

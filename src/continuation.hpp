@@ -35,6 +35,8 @@ struct ContinuationOptions {
   long points = 100;        // converged points to take at most
   double ftol = 1e-8;       // largest force at a converged point
   int max_iterations = 25;  // corrector iterations before the step is halved
+  // at the first bifurcation point, leave the path onto the bifurcated branch (§9.4)
+  bool switch_branch = false;
   // called at every converged point (and the start); returns true to stop
   std::function<bool(Simulation&, const ContinuationPoint&)> callback;
 };

@@ -278,6 +278,10 @@ ParamSpec continuation_spec() {
       .def(25.0)
       .min(1)
       .max(10000);
+  s.boolean("switch_branch",
+            "at the first bifurcation point, leave the path onto the bifurcated branch (along "
+            "the null vector of the stiffness matrix, docs/models.md §9.4)")
+      .def(false);
   s.add("callback", ParamType::Function,
         "function(sim, point) called at the start and at every converged point, point = "
         "{index, lambda, negative_pivots, iterations, ds, event, critical_lambda} (event: \"limit "
@@ -643,6 +647,7 @@ int l_continuation(lua_State* L) {
   opt.points = p.integer("points");
   opt.ftol = p.real("ftol");
   opt.max_iterations = static_cast<int>(p.integer("max_iterations"));
+  opt.switch_branch = p.boolean("switch_branch");
   int cb_ref = LUA_NOREF;
   lua_getfield(L, 2, "callback");
   if (lua_isfunction(L, -1)) {

@@ -2,7 +2,8 @@
 -- their limit and bifurcation points against closed forms: -v case=truss follows a von
 -- Mises truss through both limit points of its snap-through (P_max from P(w)); -v
 -- case=column loads a straight clamped-free 2D column and finds Euler's bifurcation
--- P_cr = pi^2 EI / (4 L^2) from the count of negative pivots of the stiffness matrix.
+-- P_cr = pi^2 EI / (4 L^2) from the count of negative pivots of the stiffness matrix, and
+-- with -v branch=true follows the buckled branch against the elastica.
 -- Expected run time: well under a second for either case (defaults).
 --   slender continuation.lua -v case=column -v nodes=81
 local case = slender.var("case", "truss")
@@ -64,17 +65,51 @@ else
   sim:fix("clamp", "clamp", { group = "base" })
   sim:fix("load", "force/constant", { group = "tip", force = { -1, 0 } })
   local pcr = math.pi ^ 2 / 4
-  local found
-  -- the axial shortening per unit load is L / EA = 1e-5: arc-length steps of that order
-  local points = sim:continuation { load = "load", ds = 1e-5, ds_max = 2e-5, lambda_max = 4, points = 1000,
-    callback = function(_, p)
-      if p.event == "bifurcation point" then found = p.critical_lambda end
+  -- -v branch=true switches onto the buckled branch at P_cr and follows it to a tip
+  -- deflection of 0.55 L, against the elastica: lambda / P_cr = (2 K(k) / pi)^2 where
+  -- delta / L = 2 k / K(k), K the complete elliptic integral (by the AGM)
+  local branch = slender.var("branch", false)
+  local function K(k)
+    local a, b = 1.0, math.sqrt(1 - k * k)
+    for _ = 1, 30 do a, b = 0.5 * (a + b), math.sqrt(a * b) end
+    return math.pi / (2 * a)
+  end
+  local function elastica_load(delta)
+    local lo, hi = 0.0, 0.6
+    for _ = 1, 100 do
+      local k = 0.5 * (lo + hi)
+      if 2 * k / K(k) < delta then lo = k else hi = k end
+    end
+    return pcr * (2 * K(0.5 * (lo + hi)) / math.pi) ^ 2
+  end
+  local found, on_branch, worst, checked = nil, false, 0.0, 0
+  -- the axial shortening per unit load is L / EA = 1e-5: the first arc-length steps are of
+  -- that order (they grow to ds_max; lambda_max stays below the second critical load 9 P_cr)
+  local points = sim:continuation { load = "load", ds = 1e-5, ds_max = branch and 0.05 or 2e-5,
+    lambda_max = 4, points = 2000, switch_branch = branch,
+    callback = function(s, p)
+      if p.event == "bifurcation point" then
+        found, on_branch = p.critical_lambda, branch
+        return false
+      end
+      if not on_branch then return false end
+      local _, y = s:position(-1)
+      if math.abs(y) > 0.05 then  -- away from the critical point
+        worst = math.max(worst, math.abs(p.lambda - elastica_load(math.abs(y))) / pcr)
+        checked = checked + 1
+      end
+      return math.abs(y) > 0.55
     end }
   local err = found and math.abs(found - pcr) / pcr or 1
   slender.result { case = "column", nodes = N, points = points, critical = found or -1, euler = pcr,
-    rel_error = err, wall_s = slender.clock() - t0 }
+    rel_error = err, branch = branch, branch_points = checked, branch_error = worst,
+    wall_s = slender.clock() - t0 }
   if check then
     assert(found, "no bifurcation point found below lambda = 4")
     assert(err < check, string.format("relative error %.3e exceeds %.3e", err, check))
+    if branch then
+      assert(checked >= 5 and worst < check,
+             string.format("%d points on the branch, error %.3e (tolerance %.3e)", checked, worst, check))
+    end
   end
 end

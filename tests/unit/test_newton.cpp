@@ -293,3 +293,51 @@ TEST(Continuation, RefusesAFixWithoutALoad) {
   opt.load = "nothing";
   EXPECT_THROW(continuation(*sim, opt), InputError);
 }
+
+TEST(Continuation, SwitchesOntoTheBuckledBranchAndFollowsTheElastica) {
+  // the column of the last test, switched onto the bifurcated branch at P_cr: along it the
+  // elastica gives lambda / P_cr = (2 K(k) / pi)^2 for the tip's lateral deflection
+  // delta / L = 2 k / K(k) (Timoshenko & Gere; increasing in k up to k = 0.5 and beyond)
+  auto sim = cantilever(41, Vec3(-1.0, 0, 0));
+  const double pcr = M_PI * M_PI / 4.0;
+  auto elastica_load = [&](double delta) {
+    double lo = 0.0, hi = 0.6;
+    for (int i = 0; i < 100; ++i) {
+      const double k = 0.5 * (lo + hi);
+      (2 * k / std::comp_ellint_1(k) < delta ? lo : hi) = k;
+    }
+    const double k = 0.5 * (lo + hi);
+    return pcr * std::pow(2 * std::comp_ellint_1(k) / M_PI, 2.0);
+  };
+  ContinuationOptions opt;
+  opt.load = "load";
+  opt.ds = 1e-5;
+  opt.ds_max = 0.05;
+  opt.points = 2000;
+  opt.lambda_max = 4.0;  // below the second critical load, 9 P_cr
+  opt.switch_branch = true;
+  bool on_branch = false;
+  int checked = 0;
+  double worst = 0.0, delta_max = 0.0;
+  opt.callback = [&](Simulation& s, const ContinuationPoint& p) {
+    if (p.event == "bifurcation point") {
+      on_branch = true;
+      return false;
+    }
+    if (!on_branch) return false;
+    const double delta = std::abs(s.nodes().x[41].y());
+    EXPECT_EQ(p.negative_pivots, 0) << "the buckled branch is stable, lambda " << p.lambda;
+    if (delta > 0.05) {  // away from the critical point, where both sides are flat
+      worst = std::max(worst, std::abs(p.lambda - elastica_load(delta)) / pcr);
+      ++checked;
+    }
+    delta_max = std::max(delta_max, delta);
+    return delta > 0.55;
+  };
+  const ContinuationResult r = continuation(*sim, opt);
+  EXPECT_EQ(r.bifurcation_points, 1);
+  EXPECT_TRUE(on_branch);
+  EXPECT_GE(checked, 5);
+  EXPECT_GT(delta_max, 0.55);
+  EXPECT_LT(worst, 5e-4);  // measured 1.0e-4 at 41 nodes, the discretisation error of P_cr
+}

@@ -24,7 +24,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
     throw InputError("continuation: load must name a fix, and there is no fix '" + opt.load + "'");
   if (!fix->set_load_factor(1.0))
     throw InputError("continuation: fix '" + opt.load + "' (" + fix->style_name() +
-                     ") has no load to scale (force/constant has)");
+                     ") has no load to scale (force/constant and moment2d have)");
   if (!(opt.ds > 0) || !(opt.ds_max >= opt.ds) || !(opt.ds_min > 0) || !(opt.ds_min <= opt.ds))
     throw InputError("continuation: the steps need 0 < ds_min <= ds <= ds_max, got ds_min = " +
                      g6(opt.ds_min) + ", ds = " + g6(opt.ds) + ", ds_max = " + g6(opt.ds_max));
@@ -57,6 +57,17 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
   double lambda = opt.lambda0;
   set_lambda(lambda);
   sim.compute_forces();
+  // q = df/dlambda at the current state (a follower load, e.g. an end moment, turns with
+  // the nodes): the forces at lambda + 1 less those at lambda, the state's forces restored
+  auto load_vector = [&] {
+    const Eigen::VectorXd f0 = sys.forces();
+    set_lambda(lambda + 1.0);
+    sim.compute_forces();
+    Eigen::VectorXd dq = sys.forces() - f0;
+    set_lambda(lambda);
+    sim.compute_forces();
+    return dq;
+  };
   auto apply = [&](const Eigen::VectorXd& dx) {
     const std::vector<Vec3> d = sys.per_node(dx);
     for (size_t i = 0; i < N; ++i) n.x[i] += d[i];
@@ -78,6 +89,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
   sys.assemble();
   long neg = sys.factorize();
   if (neg < 0) throw InputError("continuation: the stiffness matrix is singular at the start");
+  q = load_vector();
   Eigen::VectorXd v = sys.solve(q);
   // lambda is weighed like the displacement a unit of it causes at the start (§9.4)
   const double psi2 = v.squaredNorm();
@@ -121,6 +133,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
       if (sim.max_force() < opt.ftol) return it;
       sys.assemble();
       if (sys.factorize() < 0) return -1;
+      q = load_vector();
       const Eigen::VectorXd a = sys.solve(sys.forces()), b = sys.solve(q);
       const double den = t.dot(b) + psi2 * t_l;
       const double g = t.dot(u) + psi2 * t_l * dl - step;
@@ -161,6 +174,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
     Eigen::VectorXd tx1;
     double tl1 = 0.0;
     if (nneg >= 0) {
+      q = load_vector();
       tangent(sys.solve(q), tx1, tl1);
     } else {  // exactly singular: the secant
       const double norm = std::sqrt(u.squaredNorm() + psi2 * dl * dl);

@@ -258,7 +258,7 @@ ParamSpec continuation_spec() {
               "Hessians, docs/models.md §9.4), and reports where the count of unstable "
               "directions changes (limit and bifurcation points); returns the points taken and "
               "the last lambda");
-  s.string("load", "id of the fix whose load lambda scales (force/constant)").required();
+  s.string("load", "id of the fix whose load lambda scales (force/constant, moment2d)").required();
   s.real("lambda0",
          "load factor at the start (the state must be, or Newton must reach, an "
          "equilibrium there)")

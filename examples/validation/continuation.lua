@@ -3,11 +3,12 @@
 -- Mises truss through both limit points of its snap-through (P_max from P(w)); -v
 -- case=column loads a straight clamped-free 2D column and finds Euler's bifurcation
 -- P_cr = pi^2 EI / (4 L^2) from the count of negative pivots of the stiffness matrix, and
--- with -v branch=true follows the buckled branch against the elastica.
+-- with -v branch=true follows the buckled branch against the elastica; -v case=roll rolls a
+-- clamped wire into a full circle by an end moment (fix moment2d) against the exact arcs.
 -- Expected run time: well under a second for either case (defaults).
 --   slender continuation.lua -v case=column -v nodes=81
 local case = slender.var("case", "truss")
-assert(case == "truss" or case == "column", "case must be truss or column")
+assert(case == "truss" or case == "column" or case == "roll", "case must be truss, column or roll")
 local check = slender.var("check")
 local fast = slender.var("fast", false)  -- the suite's fast mode: a coarser column
 local t0 = slender.clock()
@@ -51,6 +52,42 @@ if case == "truss" then
     assert(#limits == 2, "expected two limit points, found " .. #limits)
     assert(err < check and worst < check,
            string.format("limit error %.3e, path error %.3e exceed %.3e", err, worst, check))
+  end
+elseif case == "roll" then
+  -- the cantilever of cantilever2d.lua under an end moment lambda M0, M0 = 2 pi EI / L: pure
+  -- bending into an arc of curvature kappa = lambda M0 / EI, the tip at
+  -- (sin(kappa L) / kappa, (1 - cos(kappa L)) / kappa); the circle closes at lambda = 1
+  local N = slender.var("nodes", fast and 21 or 41)
+  local h = 1.0 / (N - 0.5)
+  local sim = slender.simulation { dimension = 2, seed = 1 }
+  sim:wire { name = "beam", nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
+  sim:bond("spring", { k = 1e5 / h })
+  sim:bond("bend2d", { k = 1 / h })
+  sim:group("base", { chain = "beam", nodes = { 1, 2 } })
+  sim:fix("clamp", "clamp", { group = "base" })
+  sim:fix("roll", "moment2d", { chain = "beam", moment = 2 * math.pi })
+  local worst, last, closed = 0.0, 0.0, nil
+  local points, lambda = sim:continuation { load = "roll", ds = 0.05, ds_max = 0.2, lambda_max = 1, points = 500,
+    ftol = 1e-7, callback = function(s, p)
+      if p.lambda > 1 or p.lambda <= 0 then return false end
+      local kappa = 2 * math.pi * p.lambda
+      local x, y = s:position(-1)
+      worst = math.max(worst, math.sqrt((x - math.sin(kappa) / kappa) ^ 2 + (y - (1 - math.cos(kappa)) / kappa) ^ 2))
+      last = p.lambda
+    end }
+  -- the closed circle: Newton at exactly lambda = 1, the tip back at the clamp
+  sim:continuation { load = "roll", lambda0 = 1, points = 1, ds = 1e-9, ds_min = 1e-12, ftol = 1e-7,
+    callback = function(s, p)
+      if p.index == 0 then closed = { s:position(-1) } end
+      return true
+    end }
+  local gap = math.sqrt(closed[1] ^ 2 + closed[2] ^ 2)
+  slender.result { case = "roll", nodes = N, points = points, lambda = lambda, last_checked = last,
+    arc_error = worst, closure_gap = gap, wall_s = slender.clock() - t0 }
+  if check then
+    assert(last > 0.8, "the path stopped at lambda = " .. last)
+    assert(worst < check and gap < check,
+           string.format("arc error %.3e, closure gap %.3e exceed %.3e", worst, gap, check))
   end
 else
   -- the clamped cantilever of cantilever2d.lua (EI = 1, EA = 1e5, L = 1, staggered clamp)

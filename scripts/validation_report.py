@@ -91,7 +91,7 @@ CASES = [
     dict(id="cantilever_small", family="wire 2D", title="2D cantilever, small deflection",
          deck="validation/cantilever2d.lua", fixed={"alpha": 0.01, "model": "bend2d"},
          ladder=("nodes", [11, 21, 41, 81], [11, 21, 41]), h=nodes_h,
-         integrators=(["verlet", "gear5", "fire"], ["fire"]), order=1.8,
+         integrators=(["verlet", "gear5", "fire", "newton"], ["fire"]), order=1.8,
          reference="tip deflection of the extensible elastica with the wire's EA (shooting on "
                    "theta'(0), RK4 + bisection, in the deck); alpha = PL^2/EI = 0.01, where it "
                    "equals Euler-Bernoulli PL^3/3EI to 1e-4",
@@ -99,7 +99,7 @@ CASES = [
     dict(id="cantilever_large", family="wire 2D", title="2D cantilever, large deflection",
          deck="validation/cantilever2d.lua", fixed={"alpha": 3, "model": "bend2d"},
          ladder=("nodes", [11, 21, 41, 81], [11, 21, 41]), h=nodes_h,
-         integrators=(["verlet", "gear5", "fire"], ["fire"]), order=1.8, dt_ladder=True,
+         integrators=(["verlet", "gear5", "fire", "newton"], ["fire"]), order=1.8, dt_ladder=True,
          reference="tip position of the extensible elastica at alpha = 3 (shooting, in the deck; "
                    "scripts/elastica.py re-derives it independently to 1e-10)",
          source="Bisshopp & Drucker, Q. Appl. Math. 3 (1945) 272; docs/models.md §2.1"),
@@ -159,6 +159,37 @@ CASES = [
                    "trials of -v criterion=dynamic gave 1.3e-1 / 3.5e-3 / 8.5e-4 at 12 / 24 / 48 "
                    "nodes in minutes)",
          source="Michell, Messenger of Math. 19 (1889) 181; Goriely, J. Elasticity 84 (2006) 281; docs/models.md §7.1 A-2"),
+    dict(id="continuation_column", family="wire 2D",
+         title="2D Euler buckling, clamped-free, by continuation (Newton statics)",
+         deck="validation/continuation.lua", fixed={"case": "column"},
+         ladder=("nodes", [11, 21, 41, 81], [11, 21]), h=nodes_h,
+         integrators=(["none"], ["none"]), order=1.8,
+         reference="critical load pi^2 EI / (4 L^2): the load where the count of negative pivots "
+                   "of the stiffness matrix changes along the straight column's path, bisected on "
+                   "the arc length (one run, no trials); below about 1e-5 the extensible column's "
+                   "own shift P/EA shows",
+         source="Timoshenko & Gere §2.1; docs/models.md §9.4"),
+    dict(id="continuation_branch", family="wire 2D",
+         title="2D buckled column (elastica) by branch switching",
+         deck="validation/continuation.lua", fixed={"case": "column", "branch": "true"},
+         ladder=("nodes", [11, 21, 41, 81], [11, 21]), h=nodes_h,
+         integrators=(["none"], ["none"]), order=1.8,
+         metric=lambda work, r: (float(r["branch_error"]),
+                                 "%s points checked on the branch" % r["branch_points"]),
+         reference="lambda / P_cr = (2 K(k) / pi)^2 at the tip deflection delta / L = 2 k / K(k) "
+                   "(inextensible elastica), largest error over the branch up to delta = 0.55 L",
+         source="Timoshenko & Gere §2.7; docs/models.md §9.4"),
+    dict(id="continuation_roll", family="wire 2D",
+         title="2D wire rolled into a full circle by an end moment",
+         deck="validation/continuation.lua", fixed={"case": "roll"},
+         ladder=("nodes", [11, 21, 41, 81], [11, 21]), h=nodes_h,
+         integrators=(["none"], ["none"]), order=1.8,
+         metric=lambda work, r: (max(float(r["arc_error"]), float(r["closure_gap"])),
+                                 "closure gap %.2e" % float(r["closure_gap"])),
+         reference="tip on the exact arc (sin kL / k, (1 - cos kL) / k), k = M / EI, along the "
+                   "whole continuation path, and back at the root at M = 2 pi EI / L (error per "
+                   "length L)",
+         source="pure bending; docs/models.md §9.5"),
     dict(id="plate_ss", family="shell", title="Square plate under uniform load, simply supported",
          deck="validation/plate_load.lua", fixed={"support": "simply_supported"},
          ladder=("n", [8, 16, 32], [8, 16]), h=lambda n: 1.0 / int(n),
@@ -404,7 +435,7 @@ def main(argv=None):
             for integ in integs:
                 auto = [r for r in rows if r["integrator"] == integ and r["resolution"] == values[-1]
                         and r["status"] == "ok" and r.get("dt")]
-                if integ == "fire" or not auto:
+                if integ in ("fire", "newton") or not auto:
                     continue
                 for f in (2, 4):
                     r = run_one(slender, case, values[-1], integ, auto[0]["dt"] / f, False, args.timeout)

@@ -7,8 +7,10 @@
 // is the `spring` style (k = YA / l0, docs/models.md §3.3 (4.7)).
 #include <Eigen/Geometry>
 #include <cmath>
+#include <unsupported/Eigen/AutoDiff>
 
 #include "chain_select.hpp"
+#include "hessian.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -76,6 +78,53 @@ class StraightRodBond : public ChainBondStyle {
           });
     }
     return energy;
+  }
+  // The exact Hessian by forward automatic differentiation of the hinge forces above
+  // (Eigen's AutoDiffScalar, nine directions: the three nodes' coordinates), exact to
+  // round-off like the forces themselves (docs/models.md §9.6).
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    using AD = Eigen::AutoDiffScalar<Eigen::Matrix<double, 9, 1>>;
+    using V = Eigen::Matrix<AD, 3, 1>;
+    const auto& x = sim.nodes().x;
+    for (auto* c : chains_now(sim)) {
+      const int ne = c->n_edges();
+      for (int h = 0; h < c->n_hinges(); ++h) {
+        int a, m, b;
+        c->hinge(h, a, m, b);
+        const int e0i = c->closed ? (h - 1 + ne) % ne : h;
+        const int e1i = c->closed ? h : h + 1;
+        const double l = c->rest_length[e0i] + c->rest_length[e1i];
+        V xa, xm, xb;
+        for (int k = 0; k < 3; ++k) {
+          xa[k] = AD(x[a][k], 9, k);
+          xm[k] = AD(x[m][k], 9, 3 + k);
+          xb[k] = AD(x[b][k], 9, 6 + k);
+        }
+        const V e0 = xm - xa, e1 = xb - xm;
+        const AD n0 = sqrt(e0.squaredNorm()), n1 = sqrt(e1.squaredNorm());
+        const AD D = n0 * n1 + e0.dot(e1);
+        if (!(D.value() > 1e-12 * n0.value() * n1.value())) continue;
+        const V kb = AD(2.0) * e0.cross(e1) / D;
+        const AD kb2 = kb.squaredNorm();
+        const AD s = AD(2.0 * yi_ / l) / D;
+        const V fa = -s * (AD(2.0) * kb.cross(e1) + kb2 * (e1 + (n1 / n0) * e0));
+        const V fb = -s * (AD(2.0) * kb.cross(e0) - kb2 * (e0 + (n0 / n1) * e1));
+        // rows: -d f / d x for the nodes a, m, b (f_m = -(f_a + f_b))
+        const int node[3] = {a, m, b};
+        for (int col = 0; col < 3; ++col) {
+          Eigen::Matrix3d Ha, Hb;
+          for (int r = 0; r < 3; ++r)
+            for (int k = 0; k < 3; ++k) {
+              Ha(r, k) = -fa[r].derivatives()[3 * col + k];
+              Hb(r, k) = -fb[r].derivatives()[3 * col + k];
+            }
+          H.add(a, node[col], Ha);
+          H.add(b, node[col], Hb);
+          H.add(m, node[col], Eigen::Matrix3d(-Ha - Hb));
+        }
+      }
+    }
+    return true;
   }
   // zig-zag mode: a small turning angle phi stores YI phi^2 / (2 l0), i.e. k2 = YI / l0
   double max_frequency(const Context& sim) const override {

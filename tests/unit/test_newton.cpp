@@ -401,3 +401,42 @@ TEST(EndMomentFix, RollsAClampedWireIntoAFullCircle) {
   EXPECT_LT(worst, 1e-3);  // O(h^2) of the discrete arc: measured 4.7e-4
   EXPECT_EQ(r.limit_points + r.bifurcation_points, 0);
 }
+
+TEST(Hessian, StraightRodMatchesFiniteDifferencesOfItsForces) {
+  for (bool closed : {false, true}) {
+    Simulation sim(3, 1);
+    sim.add_chain("r", wiggly_chain(7, 3, 13, 0.45), 1.0, closed);
+    sim.add_bond("rod/straight", P({{"YI", 2.0}}));
+    sim.add_bond("spring", P({{"k", 50.0}}));
+    EXPECT_LT(fd_hessian_error(sim), 1e-7) << "closed " << closed;
+  }
+}
+
+TEST(Newton, BucklesA3dRodOntoTheElastica) {
+  // the column of BucklesPastEulersLoadOntoTheElastica as a discrete elastic rod in 3D
+  // (rod/straight): Newton from a slightly bowed state to the buckled elastica
+  const double k = 0.5, Kk = std::comp_ellint_1(k);
+  const double load = std::pow(2.0 * Kk / M_PI, 2.0) * M_PI * M_PI / 4.0;
+  const int N = 41;
+  const double h = 1.0 / (N - 0.5);
+  Simulation sim(3, 1);
+  sim.verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= N; ++i) {
+    const double x = -h / 2 + i * h;
+    pts.emplace_back(x, 1e-4 * x * x, 0.0);
+  }
+  sim.add_chain("rod", pts, h, false);
+  sim.add_bond("spring", P({{"k", 1e5 / h}}));
+  sim.add_bond("rod/straight", P({{"YI", 1.0}}));
+  sim.set_group("base", {0, 1});
+  sim.set_group("tip", {N});
+  sim.add_fix("clamp", "clamp", P({{"group", std::string("base")}}));
+  sim.add_fix("load", "force/constant",
+              P({{"group", std::string("tip")}, {"force", std::vector<double>{-load, 0.0, 0.0}}}));
+  const long it = sim.minimize(1e-8, 400, "newton");
+  EXPECT_LT(it, 400);
+  ASSERT_LT(sim.max_force(), 1e-8);
+  EXPECT_NEAR(std::abs(sim.nodes().x[N].y()), 2.0 * k / Kk, 0.01);
+  EXPECT_NEAR(sim.nodes().x[N].z(), 0.0, 1e-6);  // it stays in its plane
+}

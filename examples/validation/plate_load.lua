@@ -1,6 +1,7 @@
 -- Purpose: a square Kirchhoff plate under a uniform load, simply supported or clamped, against the
 -- classical centre deflection w = alpha q a^4 / D (Koiter shell on Loop subdivision, docs/models.md §6;
--- static equilibrium by FIRE, or by L-BFGS with -v integrator=lbfgs).
+-- static equilibrium by FIRE, or by L-BFGS with -v integrator=lbfgs, or by Newton with
+-- -v integrator=newton).
 -- Expected run time: ~2 s at n = 8, ~10 s at n = 16, ~2 min at n = 32 (cells per side).
 --
 -- References: simply supported, Navier's double series (Timoshenko & Woinowsky-Krieger, "Theory of

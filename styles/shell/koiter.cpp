@@ -14,8 +14,10 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
+#include <unsupported/Eigen/AutoDiff>
 
 #include "context.hpp"
+#include "hessian.hpp"
 #include "registry.hpp"
 #include "shell/loop_patch.hpp"
 
@@ -150,6 +152,108 @@ class KoiterShell : public ShellStyle {
     bend_ = eb;
     sim.add_energy("stretch", es);
     sim.add_energy("bend", eb + ghost_energy_);
+  }
+
+  // The exact Hessian (docs/models.md §9.7): the Jacobian of each Gauss point's nodal forces
+  // of accumulate() by forward automatic differentiation over its stencil's coordinates,
+  // then carried through the ghost rules as the forces are (a prescribed ghost is a linear
+  // combination of real nodes: H -> T^T H T). The uniform load is linear: nothing.
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    if (boundary_ == Boundary::kCombined) return false;  // the ghost springs: not yet
+    using Deriv = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 96, 1>;
+    using AD = Eigen::AutoDiffScalar<Deriv>;
+    using V = Eigen::Matrix<AD, 3, 1>;
+    const auto& x = sim.nodes().x;
+    const auto& g = mesh();
+    // the real nodes (and weights) that place each node: a prescribed ghost expands
+    std::vector<std::vector<std::pair<int, double>>> via(static_cast<size_t>(g.mesh.n_nodes()));
+    for (int i = 0; i < g.mesh.n_nodes(); ++i) via[i] = {{base_ + i, 1.0}};
+    if (boundary_ == Boundary::kMirror)
+      for (auto& gh : g.ghosts)
+        via[gh.node] = {{base_ + gh.b0, 1.0}, {base_ + gh.b2, 1.0}, {base_ + gh.interior, -1.0}};
+    else if (boundary_ == Boundary::kSimplySupported)
+      for (std::size_t k = 0; k < g.ghosts.size(); ++k)
+        via[g.ghosts[k].node] = {{base_ + partner_[k], -1.0}};
+    auto dot = [](const V& a, const V& b) { return AD(a.dot(b)); };
+    auto cross = [](const V& a, const V& b) {
+      V c;
+      c << a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0];
+      return c;
+    };
+    // P^T A P and P A P^T of a symmetric 2x2 AD matrix (a00, a01, a11)
+    auto congruent = [](const Mat2& P, const AD A[3], bool transpose_first, AD out[3]) {
+      AD full[2][2] = {{A[0], A[1]}, {A[1], A[2]}};
+      auto Pt = [&](int i, int j) { return transpose_first ? P(j, i) : P(i, j); };
+      for (int idx = 0; idx < 3; ++idx) {
+        const int i = idx == 2 ? 1 : 0, j = idx == 0 ? 0 : 1;
+        AD sum = AD(0.0);
+        for (int k = 0; k < 2; ++k)
+          for (int l = 0; l < 2; ++l) sum += Pt(i, k) * full[k][l] * Pt(j, l);
+        out[idx] = sum;
+      }
+    };
+    for (const GaussPoint& gp : gauss_) {
+      const shell::ShapeRow* R = &rows_[gp.row0];
+      const int nr = gp.nrows, nd = 3 * nr;
+      if (nd > 96)
+        throw InputError("shell 'koiter': a vertex of valence above 26 has no Hessian here");
+      V a1 = V::Constant(AD(0.0)), a2 = a1, a11 = a1, a12 = a1, a22 = a1;
+      for (int r = 0; r < nr; ++r) {
+        V p;
+        for (int k = 0; k < 3; ++k) p[k] = AD(x[R[r].node][k], nd, 3 * r + k);
+        a1 += p * R[r].Nv;
+        a2 += p * R[r].Nw;
+        a11 += p * R[r].Nvv;
+        a12 += p * R[r].Nvw;
+        a22 += p * R[r].Nww;
+      }
+      const V n = cross(a1, a2);
+      const AD J = sqrt(dot(n, n));
+      const V a3 = n / J;
+      const AD a[3] = {dot(a1, a1), dot(a1, a2), dot(a2, a2)};
+      const AD k[3] = {dot(a11, a3), dot(a12, a3), dot(a22, a3)};
+      AD ah[3], kh[3];
+      congruent(gp.P, a, true, ah);
+      congruent(gp.P, k, true, kh);
+      const AD al[3] = {0.5 * (ah[0] - gp.abar(0, 0)), 0.5 * (ah[1] - gp.abar(0, 1)),
+                        0.5 * (ah[2] - gp.abar(1, 1))};
+      const AD be[3] = {gp.kbar(0, 0) - kh[0], gp.kbar(0, 1) - kh[1], gp.kbar(1, 1) - kh[2]};
+      const AD alV[3] = {al[0], al[2], 2.0 * al[1]}, beV[3] = {be[0], be[2], 2.0 * be[1]};
+      AD HalV[3], HbeV[3];
+      for (int r = 0; r < 3; ++r) {
+        HalV[r] = gp.H(r, 0) * alV[0] + gp.H(r, 1) * alV[1] + gp.H(r, 2) * alV[2];
+        HbeV[r] = gp.H(r, 0) * beV[0] + gp.H(r, 1) * beV[1] + gp.H(r, 2) * beV[2];
+      }
+      const double w = area_factor_ ? gp.w * gp.detG : gp.w;
+      const AD Nm[3] = {Cm_ * HalV[0], Cm_ * HalV[2], Cm_ * HalV[1]};
+      const AD Mm[3] = {Cb_ * HbeV[0], Cb_ * HbeV[2], Cb_ * HbeV[1]};
+      AD Nt[3], Mt[3];
+      congruent(gp.P, Nm, false, Nt);
+      congruent(gp.P, Mm, false, Mt);
+      const V m1 = a1 * Nt[0] + a2 * Nt[1];
+      const V m2 = a1 * Nt[1] + a2 * Nt[2];
+      V c = a11 * Mt[0] + a12 * (2.0 * Mt[1]) + a22 * Mt[2];
+      c -= a3 * dot(c, a3);
+      const V b1 = cross(a2, c) / J, b2 = cross(c, a1) / J;
+      const V g1 = (m1 - b1) * w, g2 = (m2 - b2) * w, g3 = a3 * (-w);
+      for (int r = 0; r < nr; ++r) {
+        const shell::ShapeRow& sr = R[r];
+        const V fr = -(g1 * sr.Nv + g2 * sr.Nw +
+                       g3 * (Mt[0] * sr.Nvv + 2.0 * Mt[1] * sr.Nvw + Mt[2] * sr.Nww));
+        for (int col = 0; col < nr; ++col) {
+          Eigen::Matrix3d b;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+              const auto& d = fr[i].derivatives();
+              b(i, j) = d.size() > 3 * col + j ? -d[3 * col + j] : 0.0;
+            }
+          for (auto [ri, wr] : via[R[r].node - base_])
+            for (auto [ci, wc] : via[R[col].node - base_])
+              H.add(ri, ci, Eigen::Matrix3d(wr * wc * b));
+        }
+      }
+    }
+    return true;
   }
 
   double max_frequency(const Context&) const override { return omega_; }

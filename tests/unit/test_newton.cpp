@@ -15,48 +15,6 @@ using namespace slender::test;
 
 namespace {
 
-// The assembled Hessian of every force style against -df/dx by central differences, over
-// the free components. Returns the worst error relative to the largest entry.
-double fd_hessian_error(Simulation& sim, double h = 1e-6) {
-  auto& n = sim.nodes();
-  const int dim = sim.dimension();
-  const int N = static_cast<int>(n.size());
-  Hessian H;
-  Context& ctx = sim.context();
-  for (auto& s : sim.bonds()) EXPECT_TRUE(s->add_hessian(ctx, H)) << s->style_name();
-  for (auto& s : sim.fixes()) EXPECT_TRUE(s->add_hessian(ctx, H)) << s->style_name();
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * N, 3 * N);
-  for (const auto& t : H.triplets()) K(t.row(), t.col()) += t.value();
-  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(3 * N, 3 * N);
-  // held components (a clamp) have no force by design: out of both
-  const Property<int>* mask = n.find<int>(kHeldComponents);
-  auto held = [&](int i, int c) { return mask && ((*mask)[i] & (1 << c)); };
-  for (int i = 0; i < N; ++i)
-    for (int c = 0; c < 3; ++c)
-      if (held(i, c)) {
-        K.row(3 * i + c).setZero();
-        K.col(3 * i + c).setZero();
-      }
-  for (int j = 0; j < N; ++j)
-    for (int c = 0; c < dim; ++c) {
-      if (held(j, c)) continue;
-      const double x0 = n.x[j][c];
-      n.x[j][c] = x0 + h;
-      sim.compute_forces();
-      const std::vector<Vec3> fp = n.f;
-      n.x[j][c] = x0 - h;
-      sim.compute_forces();
-      const std::vector<Vec3> fm = n.f;
-      n.x[j][c] = x0;
-      for (int i = 0; i < N; ++i)
-        for (int r = 0; r < dim; ++r)
-          if (!held(i, r)) F(3 * i + r, 3 * j + c) = -(fp[i][r] - fm[i][r]) / (2 * h);
-    }
-  sim.compute_forces();
-  EXPECT_LT((K - K.transpose()).cwiseAbs().maxCoeff(), 1e-12 * K.cwiseAbs().maxCoeff());
-  return (K - F).cwiseAbs().maxCoeff() / K.cwiseAbs().maxCoeff();
-}
-
 // A clamped 2D wire along x with EI = 1, EA = 1e5, length L = 1 from the staggered clamp
 // (the cantilever of examples/validation/cantilever2d.lua), nodes + 1 nodes, a force on the
 // tip.

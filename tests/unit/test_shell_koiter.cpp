@@ -77,6 +77,54 @@ TEST(KoiterShell, ForcesAreTheGradientOfTheEnergy) {
   EXPECT_LT(fd_force_error(*sim, 1e-6), 2e-6);
 }
 
+TEST(KoiterShell, HessianMatchesFiniteDifferencesOfTheForces) {
+  // with growth, on a curved reference, for each ghost rule with kinematic or free ghosts
+  for (std::string boundary : {"mirror", "free_ghosts", "simply_supported"}) {
+    auto m = shell::make_rectangle(1.0, 0.6, 4, 3);
+    for (auto& x : m.x) x.z() = 0.2 * x.x() * x.x() - 0.1 * x.y();
+    auto sim = std::make_unique<Simulation>(3, 2);
+    sim->verbose = false;
+    shell::add_surface(*sim, "s", m, 0.0);
+    sim->add_growth("g", "econe",
+                    P({{"phi_e", 0.8}, {"center", std::vector<double>{0.45, 0.25, 0}}}));
+    sim->add_shell("koiter", P({{"mesh", std::string("s")},
+                                {"thickness", 0.05},
+                                {"boundary", boundary},
+                                {"growth", std::string("g")},
+                                {"load", std::vector<double>{0.1, -0.2, 0.3}}}));
+    randomize(*sim, 0.03, 11);
+    EXPECT_LT(fd_hessian_error(*sim, 1e-6), 1e-6) << boundary;
+  }
+  // irregular nodes of valence 5 and 7
+  auto core = shell_scene(shell::make_disc(1.0, 2, 0.5, 1),
+                          P({{"thickness", 0.02}, {"boundary", std::string("mirror")}}));
+  randomize(*core, 0.02, 5);
+  EXPECT_LT(fd_hessian_error(*core, 1e-6), 1e-6);
+}
+
+TEST(KoiterShell, NewtonReachesTheLbfgsPlateInAFewIterations) {
+  const double q = 2e-5;
+  auto run = [&](const std::string& method, long* its) {
+    auto sim = shell_scene(shell::make_rectangle(1.0, 1.0, 8, 8),
+                           P({{"thickness", 0.01},
+                              {"boundary", std::string("simply_supported")},
+                              {"load", std::vector<double>{0, 0, q}}}));
+    sim->set_integrator("fire", P({}));
+    *its = sim->minimize(1e-13, 400000, method,
+                         method == "lbfgs" ? P({{"memory", 50.0}}) : RawParams{});
+    EXPECT_LT(sim->max_force(), 1e-13) << method;
+    double w = 0;
+    for (int i : sim->group("s")) w = std::max(w, sim->nodes().x[i].z());
+    return w;
+  };
+  long n_newton = 0, n_lbfgs = 0;
+  const double w_newton = run("newton", &n_newton), w_lbfgs = run("lbfgs", &n_lbfgs);
+  std::printf("plate n=8: Newton %ld iterations, L-BFGS %ld, w %.9e / %.9e\n", n_newton, n_lbfgs,
+              w_newton, w_lbfgs);
+  EXPECT_NEAR(w_newton / w_lbfgs, 1.0, 1e-6);
+  EXPECT_LT(n_newton, 15);
+}
+
 // The combined method (5.35): a ghost beyond lambda * mean edge from its mirror
 // position is pulled back by k_ghost (|d| - lambda l); with ghost_reaction = false
 // (the thesis) only the ghost feels it.

@@ -32,14 +32,10 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
     throw InputError("continuation: lambda0 = " + g6(opt.lambda0) +
                      " lies outside [lambda_min, lambda_max] = [" + g6(opt.lambda_min) + ", " +
                      g6(opt.lambda_max) + "]");
-  for (auto& c : sim.extra_coordinates())
-    for (size_t i = 0; i < c->fixed->size(); ++i)
-      if (!(*c->fixed)[i])
-        throw InputError("continuation moves node positions only; this scene has free rod frames");
+  require_positions_only(sim, "continuation");
 
   auto& n = sim.nodes();
   const size_t N = n.n_owned();
-  for (auto& v : n.v) v.setZero();
   ++sim.state_epoch;
   StaticSystem sys(sim);
   auto set_lambda = [&](double l) { fix->set_load_factor(l); };

@@ -90,6 +90,15 @@ inline double hinge_angle(double c, double d) {
   return std::atan2(c, d);
 }
 
+// d/de (z x e / |e|^2) = z x (I - 2 e e^T / |e|^2) / |e|^2: the second derivative of the
+// angle of an edge e (docs/models.md §9.2); symmetric (a rotation times a reflection).
+inline Eigen::Matrix2d edge_angle_hessian(const Eigen::Vector2d& e) {
+  const double l2 = e.squaredNorm();
+  Eigen::Matrix2d J;
+  J << 0.0, -1.0, 1.0, 0.0;
+  return J * (Eigen::Matrix2d::Identity() - 2.0 * e * e.transpose() / l2) / l2;
+}
+
 struct Hinge2d {
   double zeta;
   Eigen::Vector2d ga, gb;  // dzeta/dx_a and dzeta/dx_b
@@ -121,14 +130,8 @@ struct Hinge2d {
   // the blocks of d^2zeta/dx^2 are aa = -A0, am = A0, mm = A1 - A0, mb = -A1, bb = A1.
   void add_hessian(Hessian& H, const Vec3& xa, const Vec3& xm, const Vec3& xb, int a, int m, int b,
                    double stiffness, double moment) const {
-    auto A = [](const Eigen::Vector2d& e) {
-      const double l2 = e.squaredNorm();
-      const Eigen::Matrix2d refl = Eigen::Matrix2d::Identity() - 2.0 * e * e.transpose() / l2;
-      Eigen::Matrix2d J;
-      J << 0.0, -1.0, 1.0, 0.0;
-      return Eigen::Matrix2d(J * refl / l2);
-    };
-    const Eigen::Matrix2d A0 = A((xm - xa).head<2>()), A1 = A((xb - xm).head<2>());
+    const Eigen::Matrix2d A0 = edge_angle_hessian((xm - xa).head<2>()),
+                          A1 = edge_angle_hessian((xb - xm).head<2>());
     const Eigen::Vector2d gm = -(ga + gb);
     H.add(a, a, Eigen::Matrix2d(stiffness * ga * ga.transpose() - moment * A0));
     H.add(m, m, Eigen::Matrix2d(stiffness * gm * gm.transpose() + moment * (A1 - A0)));

@@ -9,6 +9,16 @@
 
 namespace slender {
 
+void require_positions_only(Simulation& sim, const std::string& who) {
+  for (auto& c : sim.extra_coordinates())
+    for (size_t i = 0; i < c->fixed->size(); ++i)
+      if (!(*c->fixed)[i])
+        throw InputError(who +
+                         " moves node positions only; this scene has free rod frames "
+                         "(generalised coordinates): use sim:minimize{method = \"fire\"}");
+  for (auto& v : sim.nodes().v) v.setZero();
+}
+
 const Eigen::SparseMatrix<double>& StaticSystem::assemble() {
   H_.clear();
   Context& ctx = sim_.context();

@@ -7,6 +7,7 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 #include "hessian.hpp"
@@ -15,6 +16,10 @@
 namespace slender {
 
 class Simulation;
+
+// Refuses a scene with free rod frames (generalised coordinates) for a solver that moves the
+// node positions only; `who` names the solver in the message. Also puts the nodes at rest.
+void require_positions_only(Simulation& sim, const std::string& who);
 
 class StaticSystem {
  public:

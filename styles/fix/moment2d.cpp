@@ -7,6 +7,7 @@
 
 #include "context.hpp"
 #include "hessian.hpp"
+#include "hinge2d.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -68,12 +69,7 @@ class EndMomentFix : public FixStyle {
     int a, b;
     ends(sim, a, b);
     const auto& x = sim.nodes().x;
-    const Eigen::Vector2d e = (x[b] - x[a]).head<2>();
-    const double l2 = e.squaredNorm();
-    Eigen::Matrix2d J;
-    J << 0.0, -1.0, 1.0, 0.0;
-    const Eigen::Matrix2d A = J * (Eigen::Matrix2d::Identity() - 2.0 * e * e.transpose() / l2) / l2;
-    const Eigen::Matrix2d h = -factor_ * moment_ * A;
+    const Eigen::Matrix2d h = -factor_ * moment_ * edge_angle_hessian((x[b] - x[a]).head<2>());
     H.add(b, b, h);
     H.add(a, a, h);
     H.add_pair(a, b, Eigen::Matrix2d(-h));

@@ -11,6 +11,7 @@
 
 #include "registry.hpp"
 #include "simulation.hpp"
+#include "statics.hpp"
 
 namespace slender {
 
@@ -43,13 +44,7 @@ class LbfgsMinimizer : public IntegratorStyle {
   bool advances_time() const override { return false; }
 
   void setup(Simulation& sim) override {
-    for (auto& c : sim.extra_coordinates())
-      for (size_t i = 0; i < c->fixed->size(); ++i)
-        if (!(*c->fixed)[i])
-          throw InputError(
-              "integrator 'lbfgs' moves node positions only; this scene has free rod frames "
-              "(generalised coordinates): use sim:minimize{method = \"fire\"}");
-    for (auto& v : sim.nodes().v) v.setZero();
+    require_positions_only(sim, "integrator 'lbfgs'");
     history_.clear();
     // before any curvature pair: the explicit-dynamics step, x += (dt^2 / m) f, which is
     // stable for the stiffest mode (dt from the scene's frequency estimate)

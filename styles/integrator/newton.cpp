@@ -47,13 +47,7 @@ class NewtonMinimizer : public IntegratorStyle {
   bool advances_time() const override { return false; }
 
   void setup(Simulation& sim) override {
-    for (auto& c : sim.extra_coordinates())
-      for (size_t i = 0; i < c->fixed->size(); ++i)
-        if (!(*c->fixed)[i])
-          throw InputError(
-              "integrator 'newton' moves node positions only; this scene has free rod frames "
-              "(generalised coordinates): use sim:minimize{method = \"fire\"}");
-    for (auto& v : sim.nodes().v) v.setZero();
+    require_positions_only(sim, "integrator 'newton'");
     if (!sim.forces_valid) sim.compute_forces();
     system_ = std::make_unique<StaticSystem>(sim);
     system_->assemble();  // names a style without a Hessian before the first step

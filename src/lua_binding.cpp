@@ -834,6 +834,13 @@ int l_clock(lua_State* L) {
   lua_pushnumber(L, std::chrono::duration<double>(dt).count());
   return 1;
 }
+// slender.interrupted(): true once SIGINT or SIGTERM stopped a run, so that a deck that
+// catches the run's error (pcall) can tell a stop it should report as cut short from an
+// instability or a mistake.
+int l_interrupted(lua_State* L) {
+  lua_pushboolean(L, context(L)->interrupted);
+  return 1;
+}
 // slender.result{key = value, ...}: one machine-readable line for sweep scripts.
 int l_result(lua_State* L) {
   if (!lua_istable(L, 1)) throw InputError("result: expected a table {key = value}");
@@ -945,6 +952,7 @@ const luaL_Reg kModule[] = {SLENDER_METHOD("plugin", l_plugin),
                             SLENDER_METHOD("simulation", l_simulation),
                             SLENDER_METHOD("var", l_var),
                             SLENDER_METHOD("clock", l_clock),
+                            SLENDER_METHOD("interrupted", l_interrupted),
                             SLENDER_METHOD("result", l_result),
                             SLENDER_METHOD("styles", l_styles),
                             {nullptr, nullptr}};

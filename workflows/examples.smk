@@ -7,7 +7,9 @@
 #   snakemake -s workflows/examples.smk --profile workflows/profiles/local
 #
 # Config (workflows/config/examples.yaml, and rules/common.smk): fast (true: -v fast=1,
-# the suite's fast mode), decks (patterns of run-examples' PATTERN; empty: every deck).
+# the suite's fast mode), decks (patterns of run-examples' PATTERN; empty: every deck),
+# checkpoint_every (steps between the checkpoints of the decks that can resume; 0: none,
+# a cut-short run still leaves its state).
 import os
 
 configfile: os.path.join(workflow.basedir, "config", "examples.yaml")
@@ -33,17 +35,33 @@ rule all:
         f"{RESULTS}/examples.csv",
 
 
+def deck_path(deck):
+    return os.path.join(EXAMPLES, deck + ".lua")
+
+
+def deck_variables(wildcards):
+    """The -v variables of one deck: fast mode, and for a deck that can continue from a
+    checkpoint (-v restart=, studies.resumable) the checkpoint cadence."""
+    variables = {"fast": 1} if config["fast"] else {}
+    if config["checkpoint_every"] and studies.resumable(deck_path(wildcards.deck)):
+        variables["checkpoint_every"] = config["checkpoint_every"]
+    return {**variables, **config["vars"]}
+
+
 rule deck:
     output:
         RECORD,
     params:
-        variables={"fast": 1, **config["vars"]} if config["fast"] else config["vars"],
+        variables=deck_variables,
     threads: config["threads"]
     resources:
         **POINT_RESOURCES,
     run:
-        sweep.run_point(RUNNER, output[0], os.path.join(EXAMPLES, wildcards.deck + ".lua"), params.variables,
-                        f"{RESULTS}/decks/{wildcards.deck}", threads=threads, resume=False, keep_work=True,
+        # a deck that reads -v restart= continues from the state its cut-short run left
+        # (a timeout, SIGTERM from Slurm or Ctrl-C); the others start again
+        deck = deck_path(wildcards.deck)
+        sweep.run_point(RUNNER, output[0], deck, params.variables, f"{RESULTS}/decks/{wildcards.deck}",
+                        threads=threads, resume=studies.resumable(deck), keep_work=True,
                         record_failures=True)
 
 

@@ -5,7 +5,8 @@
 #    (right rows, sane values) and the plots;
 #  - partial rerun: a deleted point is the only deck that runs again (dry run, then run);
 #  - resume: runs cut by a timeout leave their checkpoints, and the next call continues
-#    them to the same result as an uninterrupted run.
+#    them to the same result as an uninterrupted run (pack3d points, and an example deck
+#    that reads -v restart=).
 #
 #   tests/workflows/test_local.sh [SLENDER_BINARY]      (default: build/slender)
 set -euo pipefail
@@ -15,7 +16,7 @@ command -v snakemake > /dev/null || { echo "workflow local: skipped (no snakemak
 [[ -x "$bin" ]] || { echo "workflow local: no slender binary at $bin" >&2; exit 1; }
 export LD_LIBRARY_PATH="$(dirname "$bin")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 tmp="$(mktemp -d /tmp/slender-workflows.XXXXXX)"
-trap 'rm -rf "$tmp"' EXIT
+trap '[[ -n "${KEEP_TMP:-}" ]] || rm -rf "$tmp"' EXIT
 fail() { echo "workflow local: FAILED: $*" >&2; exit 1; }
 
 # study NAME [snakemake args...]: the smoke config of workflows/NAME.smk in $tmp/NAME
@@ -112,4 +113,29 @@ assert os.path.exists(os.path.join(results, "decks", "tutorial", "tip_loaded_wir
 assert "2 decks, 0 failed." in open(os.path.join(results, "summary.md")).read()
 PY
 echo "examples: 2 decks, summary ($((SECONDS - t0)) s)"
+
+# the suite's long decks resume: a crumpling deck (reads -v restart=) cut by a timeout
+# fails its job, leaves its state, and the next call continues it to the uninterrupted
+# result; the finished deck's folder keeps its outputs but no state to continue
+t0=$SECONDS
+deck=(--config slender="$bin" 'decks=[crumple2d/classic.lua]' 'vars={f: 16, output: false}')
+if study examples "${deck[@]}" timeout=0.8; then fail "the classic deck finished within its 0.8 s timeout"; fi
+work="$tmp/examples/results/examples_smoke/decks/crumple2d/classic"
+[[ -f "$work/slender_interrupted.h5" ]] || { tail -n 30 "$tmp/examples.log"; fail "the cut deck left no state"; }
+study examples "${deck[@]}" || { tail -n 30 "$tmp/examples.log"; fail "examples resumed"; }
+PYTHONPATH="$repo/python" SLENDER_BIN="$bin" /usr/bin/python3 -m slender run "$repo/examples/crumple2d/classic.lua" \
+  -v fast=1 -v f=16 -v output=false --json "$tmp/reference_classic.json" > /dev/null || fail "the classic reference run"
+check examples << PY
+import json, os, sys
+results = sys.argv[1]
+reference = json.load(open("$tmp/reference_classic.json"))["result"]
+rec = json.load(open(os.path.join(results, "decks", "crumple2d", "classic.json")))
+assert rec["status"] == "ok" and rec["resumed_from"] == "slender_interrupted.h5", rec
+for key in ("phi", "steps", "contacts", "loops", "ab_ratio"):  # the restart is bit-identical
+    assert rec["result"][key] == reference[key], (key, rec["result"][key], reference[key])
+work = os.path.join(results, "decks", "crumple2d", "classic")
+assert os.path.exists(os.path.join(work, "classic_thermo.csv")), os.listdir(work)
+assert not [f for f in os.listdir(work) if f.endswith(".h5")], os.listdir(work)
+PY
+echo "examples: a crumpling deck cut by a timeout continued from its state to the uninterrupted result ($((SECONDS - t0)) s)"
 echo "workflow local: ok"

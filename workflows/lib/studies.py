@@ -4,6 +4,7 @@ scripts/run-examples), whose functions are imported, not copied."""
 import importlib.machinery
 import importlib.util
 import os
+import re
 import sys
 
 from sweep import write_table
@@ -109,6 +110,26 @@ def find_decks(examples, patterns):
     for any of the patterns (none: all)."""
     return sorted({d[:-len(".lua")] for pattern in patterns or [""]
                    for d in run_examples.find_decks(examples, pattern)})
+
+
+RESTART_READ = re.compile(r"""slender\.var\(\s*["']restart["']""")
+LOCAL_MODULE = re.compile(r"""require\s*\(?\s*["'](lib\.[A-Za-z0-9_.]+)["']""")
+
+
+def resumable(deck):
+    """True if the deck (a path to its .lua) continues from a checkpoint given as
+    -v restart=FILE: it, or a module it requires from its own folder (lib.scene ->
+    lib/scene.lua), reads the variable "restart"."""
+    folder = os.path.dirname(os.path.abspath(deck))
+    with open(deck) as fh:
+        text = fh.read()
+    sources = [text]
+    for module in LOCAL_MODULE.findall(text):
+        path = os.path.join(folder, *module.split(".")) + ".lua"
+        if os.path.exists(path):
+            with open(path) as fh:
+                sources.append(fh.read())
+    return any(RESTART_READ.search(src) for src in sources)
 
 
 def deck_row(deck, record):

@@ -115,15 +115,19 @@ def run_point(runner, output, deck, variables, work, threads=1, retry=None, resu
     the instability guard stops the first. resume: continue from a checkpoint left in
     work by an earlier job (the decks' -v restart=FILE). A run that did not end by itself
     raises (the job fails and keeps its work folder, so a rerun continues it) unless
-    record_failures. work is removed on success unless keep_work (the example decks'
-    plots). thumbnail = (png, radius): a small picture of the final state, from the
+    record_failures (then a run cut short still raises when it can resume). work
+    is removed on success unless keep_work (the example decks' plots; then its
+    checkpoints are removed, so that a forced rerun starts afresh). thumbnail = (png, radius): a small picture of the final state, from the
     checkpoint the deck wrote when it stopped (2D decks)."""
     record = runner.run(deck, variables, work, resume, threads)
     if retry and unstable(record):
         first = record
         record = runner.run(deck, {**variables, **retry}, os.path.join(work, "retry"), resume, threads)
         record["retried_with"], record["first_error"] = retry, first["error"]
-    if not (settled(record) or record_failures):
+    # a run cut short (the timeout, or a signal: exit code 130) that can continue from its
+    # checkpoint is never recorded as failed: the job fails, and the next call continues it
+    cut_short = resume and (record["status"] == "timeout" or record["returncode"] == 130)
+    if not (settled(record) or (record_failures and not cut_short)):
         raise RuntimeError(f"{deck} {variables}: {record['status']}: {record['error']} "
                            f"(its state stays in {work} for the next attempt)")
     os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
@@ -134,7 +138,10 @@ def run_point(runner, output, deck, variables, work, threads=1, retry=None, resu
     with open(output, "w") as fh:
         json.dump(record, fh, indent=1)
     if keep_work:
-        os.remove(os.path.join(work, RUN_JSON))  # a forced rerun must not find it
+        # a forced rerun must start afresh: neither the record nor a state to continue
+        os.remove(os.path.join(work, RUN_JSON))
+        while newest_checkpoint(work):
+            os.remove(newest_checkpoint(work))
     else:
         shutil.rmtree(work)
 

@@ -172,8 +172,9 @@ function M.run(p)
             callback = function(s) node_steps = node_steps + every * s:nnodes() end })
   -- a run the instability guard stopped (typically a frictionless wire overpacked
   -- to phi ~ 0.95 tearing an edge) still reports the last good state, marked
-  -- ended=instability, and then fails with the guard's message (exit code 3)
-  ctx.ended = ok and "stop" or "instability"
+  -- ended=instability, and then fails with the guard's message (exit code 3); a run
+  -- stopped by SIGINT/SIGTERM reports where it was, ended=interrupted (exit code 130)
+  ctx.ended = ok and "stop" or (slender.interrupted() and "interrupted" or "instability")
   M.report(sim, ctx, slender.clock() - t0, node_steps)
   if not ok then error(err, 0) end
   -- the last frame as a picture, coloured by plastic curvature

@@ -200,9 +200,26 @@ CASES = [
          deck="validation/plate_load.lua", fixed={"support": "clamped"},
          ladder=("n", [8, 16, 32], [8, 16]), h=lambda n: 1.0 / int(n),
          integrators=(["fire", "lbfgs", "newton"], ["lbfgs"]), order=0.8,
-         reference="centre deflection 0.00126 q a^4 / D (nu = 0.3); first order: the clamp fixes "
+         reference="centre deflection 0.00126532 q a^4 / D; first order: the clamp fixes "
                    "the three rows of nodes of docs/models.md §6.7",
-         source="Timoshenko & Woinowsky-Krieger, Table 35"),
+         source="Timoshenko & Woinowsky-Krieger, Table 35; Taylor & Govindjee (2004) for the digits"),
+    dict(id="plate_clamped_edges", family="shell",
+         title="Square plate under uniform load, clamped edges at second order (Newton)",
+         deck="validation/plate_load.lua", fixed={"support": "clamped_edges"},
+         ladder=("n", [8, 16, 32, 64], [8, 16]), h=lambda n: 1.0 / int(n),
+         integrators=(["newton"], ["newton"]), order=1.5,
+         reference="centre deflection 0.00126532 q a^4 / D; `clamped_edges`: boundary nodes held, "
+                   "each ghost the reflection of its partner's displacement (docs/models.md §6.7)",
+         source="Taylor & Govindjee, Commun. Numer. Meth. Engng 20 (2004) 757"),
+    dict(id="strip_shear", family="shell",
+         title="Cantilever shell strip under an end shear, large deflection (Newton)",
+         deck="validation/shell_strip.lua", fixed={},
+         ladder=("n", [2, 4, 8, 16], [2, 4]), h=lambda n: 1.0 / int(n),
+         integrators=(["none"], ["none"]), order=1.5,
+         reference="tip (-u, w) = (3.289, 6.700) for P L^2 / EI = 4: the extensible elastica with "
+                   "the strip's EA (shooting, in the deck); error |tip - elastica| / L; root edge "
+                   "`clamped_edges`, the end shear a `line_load` on the tip edge",
+         source="Timoshenko & Gere §2.7; the statics issue's shell obstacle course; docs/models.md §6.7"),
     dict(id="cylinder", family="shell", title="Cylindrical bending of a Koiter shell",
          deck="validation/cylinder_bend.lua", fixed={},
          ladder=("n", [8, 16, 32, 64], [8, 16, 32]), h=lambda n: 1.0 / int(n),

@@ -41,6 +41,11 @@ struct GaussPoint {
 }  // namespace
 
 class KoiterShell : public ShellStyle {
+  // the ghost rule as a value, not the deck's string: it is tested every step
+  // (kClampedEdge: the second-order clamp of clamped_edges; kClamped: `boundary =
+  // "clamped"`, which holds the first row too)
+  enum class Boundary { kCombined, kMirror, kFreeGhosts, kClamped, kSimplySupported, kClampedEdge };
+
  public:
   static ParamSpec spec(const std::string& name) {
     ParamSpec s("shell", name,
@@ -64,6 +69,16 @@ class KoiterShell : public ShellStyle {
              "§6.7 (1st order). Clamped edges always fix boundary, ghosts and first row (§6.7)")
         .def(std::string("reflection"))
         .choices({"reflection", "point"});
+    s.add("clamped_edges", ParamType::StringList,
+          "node groups whose boundary edges (both ends in the group) are clamped at "
+          "second order (§6.7): their boundary nodes are held and each ghost mirrors "
+          "its partner's displacement, the normal part even and the in-plane part odd "
+          "(u_g = (2 n n^T - 1) u_p); the other edges follow `boundary`")
+        .def(std::vector<std::string>{});
+    s.add("supported_edges", ParamType::StringList,
+          "node groups whose boundary edges are simply supported (u_g = -u_p, boundary "
+          "nodes held); the other edges follow `boundary`")
+        .def(std::vector<std::string>{});
     s.real("k_ghost", "spring of the combined method (default Y h)").positive();
     s.real("ghost_lambda", "dead zone of the ghost spring, fraction of the mean edge")
         .def(0.1)
@@ -81,6 +96,13 @@ class KoiterShell : public ShellStyle {
     s.vector("load", "uniform load q per reference area (2.32): f_I = q * integral of N_I")
         .def(std::vector<double>{0, 0, 0})
         .length(3, 3);
+    s.vector("line_load",
+             "dead load per reference length on the boundary edges of line_load_edges: "
+             "f_I = q * integral of N_I along each edge's limit curve (consistent nodal loads)")
+        .length(3, 3);
+    s.add("line_load_edges", ParamType::StringList,
+          "node groups whose boundary edges (both ends in the group) carry line_load")
+        .def(std::vector<std::string>{});
     s.output("stretch", "stretching energy of the last force evaluation");
     s.output("bend", "bending energy of the last force evaluation (ghost springs not included)");
     s.output("energy", "stretching plus bending energy");
@@ -117,6 +139,15 @@ class KoiterShell : public ShellStyle {
     Cm_ = Y_ * h_ / (1 - nu_ * nu_);
     Cb_ = Y_ * h_ * h_ * h_ / (12 * (1 - nu_ * nu_));
     precompute(sim);
+    assign_edge_rules(sim, p.strings("supported_edges"), p.strings("clamped_edges"));
+    if (p.has("line_load") != !p.strings("line_load_edges").empty())
+      throw InputError(
+          "shell 'koiter': line_load and line_load_edges go together (the load per length, "
+          "and the node groups whose boundary edges carry it)");
+    if (p.has("line_load")) {
+      line_load_ = p.vec3("line_load");
+      line_weights_ = edge_integrals(sim, p.strings("line_load_edges"));
+    }
   }
 
   void setup(Context& sim) override {
@@ -147,6 +178,17 @@ class KoiterShell : public ShellStyle {
       }
       sim.add_energy("external", ext);
     }
+    if (!line_weights_.empty()) {
+      // on the control nodes of the edges' limit curves, ghosts included: their share
+      // goes to the real nodes with the ghost rule below, as the element forces do
+      const auto& g = mesh();
+      double e = 0;
+      for (auto [i, w] : line_weights_) {
+        sim.nodes().f[base_ + i] += w * line_load_;
+        e -= w * line_load_.dot(x[base_ + i] - g.mesh.x[i]);
+      }
+      sim.add_energy("external", e);
+    }
     map_ghost_forces(x, sim.nodes().f);
     stretch_ = es;
     bend_ = eb;
@@ -159,21 +201,27 @@ class KoiterShell : public ShellStyle {
   // then carried through the ghost rules as the forces are (a prescribed ghost is a linear
   // combination of real nodes: H -> T^T H T). The uniform load is linear: nothing.
   bool add_hessian(Context& sim, Hessian& H) const override {
-    if (boundary_ == Boundary::kCombined) return false;  // the ghost springs: not yet
+    for (Boundary r : rule_)
+      if (r == Boundary::kCombined) return false;  // the ghost springs: not yet
     using Deriv = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 96, 1>;
     using AD = Eigen::AutoDiffScalar<Deriv>;
     using V = Eigen::Matrix<AD, 3, 1>;
     const auto& x = sim.nodes().x;
     const auto& g = mesh();
     // the real nodes (and weights) that place each node: a prescribed ghost expands
-    std::vector<std::vector<std::pair<int, double>>> via(static_cast<size_t>(g.mesh.n_nodes()));
-    for (int i = 0; i < g.mesh.n_nodes(); ++i) via[i] = {{base_ + i, 1.0}};
-    if (boundary_ == Boundary::kMirror)
-      for (auto& gh : g.ghosts)
-        via[gh.node] = {{base_ + gh.b0, 1.0}, {base_ + gh.b2, 1.0}, {base_ + gh.interior, -1.0}};
-    else if (boundary_ == Boundary::kSimplySupported)
-      for (std::size_t k = 0; k < g.ghosts.size(); ++k)
-        via[g.ghosts[k].node] = {{base_ + partner_[k], -1.0}};
+    // (x_g = sum W x_j + const, so its block is W_i^T B W_j)
+    const Mat3 I = Mat3::Identity();
+    std::vector<std::vector<std::pair<int, Mat3>>> via(static_cast<size_t>(g.mesh.n_nodes()));
+    for (int i = 0; i < g.mesh.n_nodes(); ++i) via[i] = {{base_ + i, I}};
+    for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+      const auto& gh = g.ghosts[k];
+      if (rule_[k] == Boundary::kMirror)
+        via[gh.node] = {{base_ + gh.b0, I}, {base_ + gh.b2, I}, {base_ + gh.interior, -I}};
+      else if (rule_[k] == Boundary::kSimplySupported)
+        via[gh.node] = {{base_ + partner_[k], -I}};
+      else if (rule_[k] == Boundary::kClampedEdge)
+        via[gh.node] = {{base_ + partner_[k], reflect_[k]}};
+    }
     auto dot = [](const V& a, const V& b) { return AD(a.dot(b)); };
     auto cross = [](const V& a, const V& b) {
       V c;
@@ -249,7 +297,7 @@ class KoiterShell : public ShellStyle {
             }
           for (auto [ri, wr] : via[R[r].node - base_])
             for (auto [ci, wc] : via[R[col].node - base_])
-              H.add(ri, ci, Eigen::Matrix3d(wr * wc * b));
+              H.add(ri, ci, Eigen::Matrix3d(wr.transpose() * b * wc));
         }
       }
     }
@@ -366,9 +414,108 @@ class KoiterShell : public ShellStyle {
     lumped_ = lumped;
   }
 
-  bool kinematic_ghosts() const {
-    return boundary_ == Boundary::kMirror || boundary_ == Boundary::kSimplySupported ||
-           boundary_ == Boundary::kClamped;
+  // the ghost of this rule is placed by the real nodes (or held), not a free node
+  static bool kinematic(Boundary r) {
+    return r != Boundary::kCombined && r != Boundary::kFreeGhosts;
+  }
+  // the rule holds the edge's boundary nodes
+  static bool holds_edge(Boundary r) {
+    return r == Boundary::kSimplySupported || r == Boundary::kClamped ||
+           r == Boundary::kClampedEdge;
+  }
+
+  // The boundary edges (each has one ghost) whose two end nodes lie in one of the groups.
+  std::vector<std::size_t> edges_in(Context& sim, const std::string& key,
+                                    const std::vector<std::string>& groups) const {
+    const auto& g = mesh();
+    std::vector<std::size_t> out;
+    for (const std::string& name : groups) {
+      if (!sim.has_group(name))
+        throw InputError("shell 'koiter': " + key + " names the group '" + name +
+                         "', which does not exist (define it with sim:group before the shell)");
+      std::vector<char> in(static_cast<size_t>(g.mesh.n_nodes()), 0);
+      for (int i : sim.group(name))
+        if (i >= base_ && i < base_ + g.n_real_nodes) in[static_cast<size_t>(i - base_)] = 1;
+      const std::size_t before = out.size();
+      for (std::size_t k = 0; k < g.ghosts.size(); ++k)
+        if (in[static_cast<size_t>(g.ghosts[k].b0)] && in[static_cast<size_t>(g.ghosts[k].b2)])
+          out.push_back(k);
+      if (out.size() == before)
+        throw InputError("shell 'koiter': " + key + " group '" + name +
+                         "' holds no boundary edge of mesh '" + mesh_name_ +
+                         "' (an edge counts when both its end nodes are in the group)");
+    }
+    return out;
+  }
+
+  // |E| times the integral of N_I ds along the limit curve of each listed boundary edge E,
+  // per control node (4 Gauss–Legendre points per edge: N is quartic along it)
+  std::vector<std::pair<int, double>> edge_integrals(Context& sim,
+                                                     const std::vector<std::string>& groups) {
+    const auto& g = mesh();
+    std::vector<double> sum(static_cast<size_t>(g.mesh.n_nodes()), 0.0);
+    const double a = 0.5 - std::sqrt(3.0 / 7 + 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
+    const double b = 0.5 - std::sqrt(3.0 / 7 - 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
+    const double wa = (18 - std::sqrt(30.0)) / 72, wb = (18 + std::sqrt(30.0)) / 72;
+    const std::array<std::pair<double, double>, 4> gl = {
+        {{a, wa}, {b, wb}, {1 - b, wb}, {1 - a, wa}}};
+    for (std::size_t k : edges_in(sim, "line_load_edges", groups)) {
+      const auto& gh = g.ghosts[k];
+      int t = -1;
+      for (int e = 0; e < g.n_real_tris && t < 0; ++e) {
+        const auto& tri = g.mesh.tri[e];
+        const auto has = [&](int n) { return tri[0] == n || tri[1] == n || tri[2] == n; };
+        if (has(gh.b0) && has(gh.b2) && has(gh.interior)) t = e;
+      }
+      if (t < 0) throw InputError("shell 'koiter': a boundary edge without its triangle");
+      const shell::Tri c = shell::oriented_element(g, t);
+      const double length = (g.mesh.x[gh.b2] - g.mesh.x[gh.b0]).norm();
+      // (v, w) of a point with barycentric weights l[0..2] on corners c[0..2]
+      for (auto [s, wq] : gl) {
+        double l[3] = {0, 0, 0};
+        for (int j = 0; j < 3; ++j) {
+          if (c[j] == gh.b0) l[j] = 1 - s;
+          if (c[j] == gh.b2) l[j] = s;
+        }
+        const shell::Stencil st = shell::evaluate(g, c, l[1], l[2]);
+        // per length of the edge as meshed: next to a corner of the mesh the ghost rings
+        // are open, the limit curve falls short of the corner and its stencil's weights sum
+        // to less than one (a tenth of the corner edge's load was lost with the limit
+        // curve's length element: a first-order error in the tip load); the load q |E| ds is
+        // shared in proportion to the weights, so that the whole of it arrives
+        double unity = 0;
+        for (const auto& r : st) unity += r.N;
+        for (const auto& r : st) sum[static_cast<size_t>(r.node)] += wq * r.N / unity * length;
+      }
+    }
+    std::vector<std::pair<int, double>> out;
+    for (std::size_t i = 0; i < sum.size(); ++i)
+      if (sum[i] != 0) out.push_back({static_cast<int>(i), sum[i]});
+    return out;
+  }
+
+  // Each ghost's rule: `boundary`, unless its edge (both boundary nodes) lies in one of
+  // the node groups of supported_edges or clamped_edges (the clamp wins where both do).
+  void assign_edge_rules(Context& sim, const std::vector<std::string>& supported,
+                         const std::vector<std::string>& clamped) {
+    const auto& g = mesh();
+    rule_.assign(g.ghosts.size(), boundary_);
+    reflect_.assign(g.ghosts.size(), Mat3::Identity());
+    auto mark = [&](const std::string& key, const std::vector<std::string>& groups, Boundary r) {
+      for (std::size_t k : edges_in(sim, key, groups)) rule_[k] = r;
+    };
+    mark("supported_edges", supported, Boundary::kSimplySupported);
+    mark("clamped_edges", clamped, Boundary::kClampedEdge);
+    for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+      if (rule_[k] != Boundary::kClampedEdge) continue;
+      // the reference normal of the edge's triangle: the ghost's displacement is its
+      // partner's reflected in the tangent plane (normal part kept, in-plane part negated)
+      const auto& gh = g.ghosts[k];
+      const Vec3 n = (g.mesh.x[gh.b2] - g.mesh.x[gh.b0])
+                         .cross(g.mesh.x[gh.interior] - g.mesh.x[gh.b0])
+                         .normalized();
+      reflect_[k] = 2.0 * n * n.transpose() - Mat3::Identity();
+    }
   }
 
   // masses, and the node masks of the boundary rules
@@ -379,20 +526,24 @@ class KoiterShell : public ShellStyle {
     double mean_real = 0;
     for (int i = 0; i < g.n_real_nodes; ++i) mean_real += lumped[i];
     mean_real /= g.n_real_nodes;
-    if (kinematic_ghosts())
-      for (auto& gh : g.ghosts) {  // a prescribed ghost's inertia goes to its edge
+    for (std::size_t k = 0; k < g.ghosts.size(); ++k)
+      if (kinematic(rule_[k])) {  // a prescribed ghost's inertia goes to its edge
+        const auto& gh = g.ghosts[k];
         lumped[gh.b0] += 0.5 * lumped[gh.node];
         lumped[gh.b2] += 0.5 * lumped[gh.node];
         lumped[gh.node] = mean_real;
       }
     for (int i = 0; i < g.mesh.n_nodes(); ++i) m[base_ + i] = lumped[i];
-    if (boundary_ == Boundary::kCombined || boundary_ == Boundary::kFreeGhosts) return;
+    bool any = false;
+    for (Boundary r : rule_) any = any || kinematic(r);
+    if (!any) return;
     auto& mask = sim.held_components();
-    for (auto& gh : g.ghosts) mask[base_ + gh.node] = kMaskAll;
-    if (boundary_ == Boundary::kSimplySupported || boundary_ == Boundary::kClamped)
-      for (int b : g.boundary) mask[base_ + b] = kMaskAll;
-    if (boundary_ == Boundary::kClamped)
-      for (int r : g.first_row) mask[base_ + r] = kMaskAll;
+    for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+      const auto& gh = g.ghosts[k];
+      if (kinematic(rule_[k])) mask[base_ + gh.node] = kMaskAll;
+      if (holds_edge(rule_[k])) mask[base_ + gh.b0] = mask[base_ + gh.b2] = kMaskAll;
+      if (rule_[k] == Boundary::kClamped) mask[base_ + gh.interior] = kMaskAll;  // first row
+    }
     for (int i = 0; i < g.mesh.n_nodes(); ++i)
       if (mask[base_ + i] == kMaskAll) sim.nodes().v[base_ + i].setZero();
   }
@@ -514,13 +665,21 @@ class KoiterShell : public ShellStyle {
 
   void place_ghosts(std::vector<Vec3>& x) const {
     const auto& g = mesh();
-    if (boundary_ == Boundary::kMirror) {
-      for (auto& gh : g.ghosts)
-        x[base_ + gh.node] = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
-    } else if (boundary_ == Boundary::kSimplySupported) {
-      for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
-        const int gn = g.ghosts[k].node, pn = partner_[k];
-        x[base_ + gn] = g.mesh.x[gn] - (x[base_ + pn] - g.mesh.x[pn]);
+    for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+      const auto& gh = g.ghosts[k];
+      const int gn = gh.node, pn = partner_[k];
+      switch (rule_[k]) {
+        case Boundary::kMirror:
+          x[base_ + gn] = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
+          break;
+        case Boundary::kSimplySupported:
+          x[base_ + gn] = g.mesh.x[gn] - (x[base_ + pn] - g.mesh.x[pn]);
+          break;
+        case Boundary::kClampedEdge:
+          x[base_ + gn] = g.mesh.x[gn] + reflect_[k] * (x[base_ + pn] - g.mesh.x[pn]);
+          break;
+        default:
+          break;
       }
     }
   }
@@ -530,23 +689,22 @@ class KoiterShell : public ShellStyle {
   void map_ghost_forces(const std::vector<Vec3>& x, std::vector<Vec3>& f) {
     const auto& g = mesh();
     ghost_energy_ = 0;
-    if (boundary_ == Boundary::kMirror) {
-      for (auto& gh : g.ghosts) {
+    const double dead = lambda_ * mean_edge_;
+    for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+      const auto& gh = g.ghosts[k];
+      if (rule_[k] == Boundary::kMirror) {
         const Vec3 fg = f[base_ + gh.node];
         f[base_ + gh.b0] += fg;
         f[base_ + gh.b2] += fg;
         f[base_ + gh.interior] -= fg;
         f[base_ + gh.node].setZero();
-      }
-    } else if (boundary_ == Boundary::kSimplySupported) {
-      for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
-        const int gn = g.ghosts[k].node;
-        f[base_ + partner_[k]] -= f[base_ + gn];
-        f[base_ + gn].setZero();
-      }
-    } else if (boundary_ == Boundary::kCombined) {
-      const double dead = lambda_ * mean_edge_;
-      for (auto& gh : g.ghosts) {
+      } else if (rule_[k] == Boundary::kSimplySupported) {
+        f[base_ + partner_[k]] -= f[base_ + gh.node];
+        f[base_ + gh.node].setZero();
+      } else if (rule_[k] == Boundary::kClampedEdge) {
+        f[base_ + partner_[k]] += reflect_[k].transpose() * f[base_ + gh.node];
+        f[base_ + gh.node].setZero();
+      } else if (rule_[k] == Boundary::kCombined) {
         const Vec3 mirror = x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior];
         const Vec3 d = x[base_ + gh.node] - mirror;
         const double len = d.norm();
@@ -623,8 +781,6 @@ class KoiterShell : public ShellStyle {
 
   std::string mesh_name_;
   double h_, Y_, nu_, rho_;
-  // the ghost rule as a value, not the deck's string: it is tested every step
-  enum class Boundary { kCombined, kMirror, kFreeGhosts, kClamped, kSimplySupported };
   static Boundary boundary_rule(const std::string& s) {
     if (s == "mirror") return Boundary::kMirror;
     if (s == "free_ghosts") return Boundary::kFreeGhosts;
@@ -647,6 +803,10 @@ class KoiterShell : public ShellStyle {
   std::vector<GaussPoint> gauss_;
   std::vector<double> lumped_;
   std::vector<int> partner_;
+  std::vector<Boundary> rule_;  // per ghost
+  std::vector<Mat3> reflect_;   // per ghost of a clamped edge: 2 n n^T - 1
+  Vec3 line_load_ = Vec3::Zero();
+  std::vector<std::pair<int, double>> line_weights_;  // (mesh node, integral of N along edges)
   double mean_edge_ = 0, lmin_ = 0;
   GrowthStyle* growth_ = nullptr;
   long growth_version_ = -1;

@@ -88,6 +88,58 @@ TEST(ConstantForceFix, EnergyIsMinusWorkAndRampsInTime) {
   EXPECT_THROW(sim.fix("flat").modify(P({{"rate", std::vector<double>{0, 0, 1}}})), InputError);
 }
 
+// A table of per-node forces (`forces`): node k of the group gets its own vector (plus the
+// ramp), the energy is their potential, the load factor of a continuation scales the
+// table, a checkpoint keeps it, and a table of the wrong length is refused in the
+// deck's words.
+TEST(ConstantForceFix, PerNodeTable) {
+  Simulation sim(2, 1);
+  sim.add_chain("w", wiggly_chain(4, 2, 3), 1.0, false);
+  sim.set_group("ends", {0, 3});
+  sim.add_fix("load", "force/constant",
+              P({{"group", std::string("ends")},
+                 {"forces", std::vector<double>{1.0, -2.0, 0.0, 3.0}},
+                 {"rate", std::vector<double>{0.5, 0.0}}}));
+  sim.nodes().x[0] += Vec3(0.3, 0.1, 0);
+  sim.nodes().x[3] += Vec3(-0.2, 0.4, 0);
+  EXPECT_LT(fd_force_error(sim), 1e-6);
+  sim.compute_forces();
+  EXPECT_NEAR(sim.energies().at("external"), -(1.0 * 0.3 - 2.0 * 0.1) - 3.0 * 0.4, 1e-12);
+  EXPECT_EQ(sim.nodes().f[0], Vec3(1.0, -2.0, 0.0));
+  EXPECT_EQ(sim.nodes().f[3], Vec3(0.0, 3.0, 0.0));
+  EXPECT_NEAR(sim.fix("load").value("fy"), 1.0, 1e-15);  // the total over the group
+  sim.time = 2.0;
+  sim.compute_forces();
+  EXPECT_NEAR(sim.nodes().f[3].x(), 0.5 * 2.0, 1e-12);
+  ASSERT_TRUE(sim.fix("load").set_load_factor(0.5));
+  sim.time = 0.0;
+  sim.compute_forces();
+  EXPECT_NEAR(sim.nodes().f[3].y(), 1.5, 1e-15);
+  StateMap st;
+  sim.fix("load").save_state(st);
+  sim.fix("load").modify(P({{"forces", std::vector<double>{0, 0, 0, 0}}}));
+  sim.fix("load").load_state(st);
+  sim.compute_forces();
+  EXPECT_NEAR(sim.nodes().f[0].y(), -1.0, 1e-15);
+  auto message = [&](RawParams p) {
+    try {
+      sim.add_fix("bad", "force/constant", p);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(P({{"group", std::string("ends")}, {"forces", std::vector<double>{1, 2, 3}}}))
+                .find("holds 3 numbers; group 'ends' has 2 nodes, so it needs 4"),
+            std::string::npos);
+  EXPECT_NE(message(P({{"group", std::string("ends")},
+                       {"force", std::vector<double>{1, 2}},
+                       {"forces", std::vector<double>{1, 2, 3, 4}}}))
+                .find("not both"),
+            std::string::npos);
+  EXPECT_NE(message(P({{"group", std::string("ends")}})).find("one of them"), std::string::npos);
+}
+
 TEST(ClampFix, ClampedComponentsNeverMove) {
   Simulation sim(2, 7);
   sim.verbose = false;

@@ -96,6 +96,27 @@ class CellGrid {
           static_cast<int>(k);
   }
 
+  // Calls f(item) for every item above `first` in the cells around p: each pair of items
+  // once when item `first` searches around itself. The items of a cell are stored in
+  // ascending order (build), so the ones at or below `first` are skipped by one binary
+  // search per cell.
+  template <class F>
+  void for_each_near_above(const Vec3& p, int first, F&& f) const {
+    int c[3];
+    coords(p, c);
+    const int zr = dim_ == 3 ? 1 : 0;
+    for (int dz = -zr; dz <= zr; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int gx = c[0] + dx, gy = c[1] + dy, gz = c[2] + dz;
+          if (gx < 0 || gy < 0 || gz < 0 || gx >= n_[0] || gy >= n_[1] || gz >= n_[2]) continue;
+          const std::size_t cell = (static_cast<std::size_t>(gz) * n_[1] + gy) * n_[0] + gx;
+          const int* begin = items_.data() + start_[cell];
+          const int* end = items_.data() + start_[cell + 1];
+          for (const int* k = std::upper_bound(begin, end, first); k < end; ++k) f(*k);
+        }
+  }
+
   // Calls f(item) for every item in the cells around p (z outermost, then y, x).
   template <class F>
   void for_each_near(const Vec3& p, F&& f) const {

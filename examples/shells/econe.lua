@@ -8,7 +8,8 @@
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_max=12 -v dphi=0.1 -v out=DIR -v boundary=mirror|combined
 --          -v inner=0.25 grows a ring (annulus R_i <= r <= 1, both edges free; S-4) instead of a disc
 --          -v mode=3 -v mode_amp=1e-3 starts from z = amp r^2 cos(3 phi) (the n = 3 e-cone of S-5)
---          -v contact=0 leaves self-contact out (the self-intersecting branch S-2 compares with)
+--          -v contact=0 leaves self-contact out (the self-intersecting branch S-2 compares with); the
+--          kiss is then where the wings' mid-surfaces touch (compute far_distance, column mid_gap)
 --          -v resume=1 continues an interrupted ramp from its last recorded phi_e (OUT/ramp.h5 and
 --          OUT/ramp_state.lua, rewritten after every increment; a fresh start when there are none)
 --          -v stop_at=PHI ends the run after the increment that reaches PHI, keeping that state for
@@ -23,6 +24,12 @@ local scene = require("lib.econe").build{fast = fast, out = "econe_out"}
 local sim, relax, record, out = scene.sim, scene.relax, scene.record, scene.out
 local h, edge, inner, nodes, tris = scene.h, scene.edge, scene.inner, scene.nodes, scene.tris
 local kiss, kiss_lo, wings_before = nil, nil, 0
+-- the wings kiss when they come into contact (at the contact thickness h); with -v contact=0,
+-- when their mid-surfaces touch or cross (compute far_distance reads 0)
+local function touching()
+  if scene.contact then return scene.cv("far_contacts") > 0 end
+  return sim:value("gap.distance") == 0
+end
 local ebmax, phi_ebmax = -1, 0
 local prev_phi, phi = 0, 0
 local ckpt = out .. "/before_step.h5"
@@ -57,15 +64,15 @@ while phi < phi_max - 1e-12 do
   sim:write_checkpoint(ckpt)
   phi = math.min(phi_max, phi + dphi)
   local steps = relax(phi)
-  if not kiss and scene.cv("far_contacts") == 0 then wings_before = sim:value("rim.n") end
-  if not kiss and scene.cv("far_contacts") > 0 then
+  if not kiss and not touching() then wings_before = sim:value("rim.n") end
+  if not kiss and touching() then
     -- first contact in (prev_phi, phi]: bisect from the last contact-free state
     local lo, hi = prev_phi, phi
     for _ = 1, kiss_bisections do
       local mid = 0.5 * (lo + hi)
       sim:read_checkpoint(ckpt)
       relax(mid)
-      if scene.cv("far_contacts") > 0 then
+      if touching() then
         hi = mid
       else
         lo = mid
@@ -112,6 +119,7 @@ if slender.var("check", 0) == 1 then
 end
 slender.result{h = h, edge = edge, inner = inner, nodes = nodes, triangles = tris,
                phi_kiss = kiss or -1, phi_kiss_lo = kiss_lo or -1,
+               kiss_by = scene.contact and "contact" or "mid_surfaces",
                phi_Ebmax = phi_ebmax, Eb_hat_max = ebmax, wings_before_contact = wings_before,
                gamma_end = scene.cv("gamma"), R_C_end = scene.core_radius(), wall_s = wall,
                element_steps_per_s = tris * scene.steps_total / math.max(wall, 1e-9)}

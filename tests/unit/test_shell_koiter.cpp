@@ -224,6 +224,31 @@ TEST(KoiterShell, EdgeRulesRefuseUnknownOrEmptyGroups) {
             std::string::npos);
 }
 
+// compute far_distance: a strip folded in two at x = 1 with its halves delta apart reads
+// delta (the fold's own facets are near in the reference and do not count); the far
+// halves pushed through each other read 0; beyond reach it reads reach.
+TEST(FarDistanceCompute, FoldedStripAndPiercingHalves) {
+  auto m = shell::make_rectangle(2.0, 0.4, 10, 2);
+  auto sim = std::make_unique<Simulation>(3, 2);
+  sim->verbose = false;
+  shell::add_surface(*sim, "s", m, 0.0);
+  auto& c =
+      sim->add_compute("gap", "far_distance",
+                       P({{"mesh", std::string("s")}, {"far_distance", 0.5}, {"reach", 0.3}}));
+  auto fold = [&](double delta, double tilt) {
+    for (int i = 0; i < static_cast<int>(m.x.size()); ++i) {
+      const Vec3& X = m.x[i];
+      sim->nodes().x[i] = X.x() <= 1.0 ? X : Vec3(2.0 - X.x(), X.y(), delta + tilt * (X.x() - 1.0));
+    }
+    c.evaluate(*sim);
+    return c.value("distance");
+  };
+  EXPECT_NEAR(fold(0.1, 0.0), 0.1, 1e-12);
+  EXPECT_NEAR(fold(0.02, 0.0), 0.02, 1e-12);
+  EXPECT_EQ(fold(0.02, -0.04), 0.0);  // the upper half dips through the lower one at x = 0.5
+  EXPECT_EQ(fold(1.0, 0.0), 0.3);     // nothing within reach
+}
+
 TEST(KoiterShell, NewtonReachesTheLbfgsPlateInAFewIterations) {
   long n_newton = 0, n_lbfgs = 0;
   const double w_newton = plate_relaxed("newton", &n_newton),

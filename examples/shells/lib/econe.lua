@@ -56,11 +56,12 @@ function M.build(opts)
   -- converge (with the closest pair only, FIRE stalls where the closest feature switches)
   -- -v contact=0: no self-contact (the self-intersecting companion branch of S-2)
   s.contact = slender.var("contact", 1) == 1
+  s.far_distance = slender.var("far_distance", 0.25)
   if s.contact then
     sim:pair("contact/shell", {mesh = "disc", thickness = s.h, young = s.young,
                                near_distance = slender.var("near_distance", 4 * s.h),
                                near_contact = slender.var("near_contact", "never"),
-                               far_distance = slender.var("far_distance", 0.25),
+                               far_distance = s.far_distance,
                                dense = slender.var("dense", "all"),
                                mu_static = opts.mu_static or 0})
   end
@@ -69,6 +70,10 @@ function M.build(opts)
     if s.contact then return sim:value("contact/shell." .. key) end
     return key == "gamma" and -1 or 0
   end
+  -- the smallest distance between the mid-surfaces of far parts (the wings), so the kiss can be
+  -- read both ways: contact at distance h, or mid-surfaces touching (-v contact=0); searched
+  -- up to 4 h (the column reads 4 h when the wings are farther apart)
+  sim:compute("gap", "far_distance", {mesh = "disc", far_distance = s.far_distance, reach = 4 * s.h})
   sim:compute("rim", "rim_modes", {group = "disc.boundary", min_radius = 0.5 * (1 + s.inner)})
   -- core radius R_C (docs/models.md §6.11 [C]): the bending energy inside r grows as A ln(r / R_C)
   -- on the developable range 0.3 <= r <= 0.6 (R_C), and where the ring-averaged U_s falls
@@ -132,7 +137,7 @@ function M.build(opts)
     local head = {}
     for _, k in ipairs(s.extra) do head[#head + 1] = k end
     csv:write(table.concat(head, ",") .. (#head > 0 and "," or "") ..
-              "phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,R_C,R_C_s,steps,wall_s\n")
+              "phi_e,E_s,E_b,Eb_hat,area,wings,a2,a3,contacts,far_contacts,gamma,R_C,R_C_s,mid_gap,steps,wall_s\n")
   end
   function s.record(phi, steps, extra_values)
     local row = {}
@@ -141,7 +146,8 @@ function M.build(opts)
                        sim:value("koiter.Eb_hat"), sim:value("koiter.area"), sim:value("rim.n"),
                        sim:value("rim.a2"), sim:value("rim.a3"), s.cv("contacts"),
                        s.cv("far_contacts"), s.cv("gamma"), s.core_radius(),
-                       s.core_radius("core_s"), steps, slender.clock() - s.t0} do
+                       s.core_radius("core_s"), sim:value("gap.distance"), steps,
+                       slender.clock() - s.t0} do
       row[#row + 1] = string.format("%.8g", v)
     end
     s.csv:write(table.concat(row, ",") .. "\n")

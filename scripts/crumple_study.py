@@ -44,16 +44,23 @@ def shape_measures(pos, r):
     return float(np.mean(rad[inside] > 0.7 * r)), float(np.percentile(np.abs(pos[inside, 1]), 90) / r)
 
 
+def study_row(result, f, value, seed):
+    """A row of the study's table from a run's RESULT (a dict of its fields), before the
+    shape measures."""
+    row = {"f": f, "value": value, "seed": seed, "status": "ok"}
+    row.update({k: float(v) for k, v in result.items() if k in RESULT_KEYS})
+    return row
+
+
 def run(binary, examples, deck, f, variable, value, seed, max_phi, speed, fixed=()):
     # no periodic frames: the dump writes the state the run stops in
     variables = [f"f={f}", f"{variable}={value}", f"seed={seed}", f"max_phi={max_phi}",
                  "dump_every=1000000000000", "thermo_every=10000", *fixed]
     if speed is not None:
         variables.append(f"s={speed}")
-    row = {"f": f, "value": value, "seed": seed, "status": "ok"}
     with tempfile.TemporaryDirectory() as tmp:
         res = run_deck(os.path.join(examples, "crumple2d", deck + ".lua"), variables, cwd=tmp, binary=binary)
-        row.update({k: float(v) for k, v in res.result.items() if k in RESULT_KEYS})
+        row = study_row(res.result, f, value, seed)
         if res.returncode != 0 or "phi" not in row:
             row.update(status="failed", error=(res.error or "?")[:200])
             return row, None
@@ -73,13 +80,13 @@ def value_text(v):
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
-def write_tables(rows, out, title, label):
+def write_tables(rows, out, title, label, writer="scripts/crumple_study.py"):
     with open(out + ".csv", "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=KEYS, extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
     with open(out + ".md", "w") as fh:
-        fh.write(f"# {title}\n\nWritten by `scripts/crumple_study.py`. A/B < 0.5 is classic by the docs/models.md "
+        fh.write(f"# {title}\n\nWritten by `{writer}`. A/B < 0.5 is classic by the docs/models.md "
                  "§2.7 criterion; outer share = wire beyond 0.7 r; half width = 90th percentile of |y|/r.\n\n")
         fh.write(f"| {label} | seed | phi | jammed | A/B | winding | loops | contacts | wall contacts | "
                  "outer share | half width | steps | wall s |\n|" + "---|" * 13 + "\n")

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The study workflows on this machine (workflows/profiles/local: snakemake --cores 2),
 # each with its two-point smoke config, in a temporary folder:
-#  - phase diagram, pack3d phi_max, example suite: per-point JSON records, the tables
+#  - phase diagram, pack3d phi_max, example suite, crumpling study: per-point JSON records, the tables
 #    (right rows, sane values) and the plots;
 #  - partial rerun: a deleted point is the only deck that runs again (dry run, then run);
 #  - resume: runs cut by a timeout leave their checkpoints, and the next call continues
@@ -138,4 +138,45 @@ assert os.path.exists(os.path.join(work, "classic_thermo.csv")), os.listdir(work
 assert not [f for f in os.listdir(work) if f.endswith(".h5")], os.listdir(work)
 PY
 echo "examples: a crumpling deck cut by a timeout continued from its state to the uninterrupted result ($((SECONDS - t0)) s)"
+# the crumpling study: a value per column, the script's table and picture, the shape
+# measures of the final wire; a run cut by a timeout continues from its checkpoint
+t0=$SECONDS
+study crumple_study || { tail -n 30 "$tmp/crumple_study.log"; fail "crumple_study"; }
+PYTHONPATH="$repo/python" SLENDER_BIN="$bin" /usr/bin/python3 -m slender run "$repo/examples/crumple2d/classic.lua" \
+  -v f=10 -v max_phi=0.3 -v damping=relative -v drag_factor=0.5 -v output=false \
+  --json "$tmp/reference_study.json" > /dev/null || fail "the study's reference run"
+check crumple_study << PY
+import csv, json, os, sys
+results = sys.argv[1]
+reference = json.load(open("$tmp/reference_study.json"))["result"]
+rows = list(csv.DictReader(open(os.path.join(results, "classic_f10_damping.csv"))))
+assert [r["value"] for r in rows] == ["absolute", "relative"], rows
+for r in rows:
+    assert r["status"] == "ok" and 0.29 < float(r["phi"]) < 0.35, r
+    assert 0 < float(r["outer_share"]) < 1 and 0 < float(r["half_width"]) < 1, r
+relative = rows[1]
+for key in ("phi", "steps", "contacts", "loops"):  # the row is the deck's RESULT
+    assert float(relative[key]) == float(reference[key]), (key, relative[key], reference[key])
+assert "| relative | 1 |" in open(os.path.join(results, "classic_f10_damping.md")).read()
+assert os.path.getsize(os.path.join(results, "classic_f10_damping.png")) > 1000
+PY
+cut=(--config slender="$bin" f=16 'values=[relative]' checkpoint_every=2000)
+if study crumple_study "${cut[@]}" timeout=0.8; then fail "the f = 16 study point finished within its 0.8 s timeout"; fi
+ls "$tmp/crumple_study/results/crumple_study_smoke/work/vrelative_seed1/"*.h5 > /dev/null 2>&1 ||
+  { tail -n 30 "$tmp/crumple_study.log"; fail "the cut study point left no checkpoint"; }
+study crumple_study "${cut[@]}" || { tail -n 30 "$tmp/crumple_study.log"; fail "crumple_study resumed"; }
+PYTHONPATH="$repo/python" SLENDER_BIN="$bin" /usr/bin/python3 -m slender run "$repo/examples/crumple2d/classic.lua" \
+  -v f=16 -v max_phi=0.3 -v damping=relative -v drag_factor=0.5 -v output=false \
+  --json "$tmp/reference_study16.json" > /dev/null || fail "the f = 16 reference run"
+check crumple_study << PY
+import json, os, sys
+results = sys.argv[1]
+reference = json.load(open("$tmp/reference_study16.json"))["result"]
+rec = json.load(open(os.path.join(results, "points", "vrelative_seed1.json")))
+assert rec["status"] == "ok" and rec["resumed_from"], rec
+for key in ("phi", "steps", "contacts", "loops", "ab_ratio"):  # the restart is bit-identical
+    assert rec["result"][key] == reference[key], (key, rec["result"][key], reference[key])
+assert 0 < rec["measures"]["outer_share"] < 1, rec["measures"]
+PY
+echo "crumple study: 2 values, table, picture; a point cut by a timeout continued to the uninterrupted result ($((SECONDS - t0)) s)"
 echo "workflow local: ok"

@@ -7,12 +7,15 @@ import os
 import re
 import sys
 
+import numpy as np
+
 from sweep import write_table
 
 SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                        "scripts")
 sys.path.insert(0, SCRIPTS)
 
+import crumple_study  # noqa: E402
 import pack3d_sweep  # noqa: E402
 import phase_diagram  # noqa: E402
 
@@ -86,6 +89,50 @@ def thumbnail_grid(rows, pictures, out, yields, mus, f):
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     plt.close(fig)
+
+
+def final_wire(work):
+    """The wire a 2D run left in its work folder (the checkpoint its deck writes when it
+    stops), its chains joined in chain order; None without a checkpoint."""
+    from sweep import newest_checkpoint
+    from slender import io
+    checkpoint = newest_checkpoint(work)
+    if not checkpoint:
+        return None
+    ck = io.read_checkpoint(checkpoint)
+    chains = [np.asarray(ck.chain_positions(name), dtype=float)[:, :2] for name in ck.chains]
+    return chains[0] if len(chains) == 1 else np.concatenate(chains)
+
+
+def crumple_measures(work, radius, npy):
+    """The shape measures of scripts/crumple_study.py (outer_share, half_width) of the wire
+    the run in work left; its positions go to npy (for the study's picture)."""
+    pos = final_wire(work)
+    if pos is None:
+        return {}
+    np.save(npy, pos)
+    outer, half = crumple_study.shape_measures(pos, radius)
+    return {"outer_share": outer, "half_width": half}
+
+
+def crumple_study_outputs(records, positions, out, title, label, values, seeds):
+    """<out>.csv, <out>.md and <out>.png of scripts/crumple_study.py from the points'
+    records and the .npy files of their final wires, in the script's order (a row per
+    seed, a column per value)."""
+    by_case = {}
+    for record, npy in zip(records, positions):
+        var, res = record["variables"], record["result"]
+        value = crumple_study.parse_value(var[record["study_variable"]])
+        row = crumple_study.study_row(res, float(var["f"]), value, int(var["seed"]))
+        row.update(record.get("measures", {}))
+        if record["status"] != "ok":
+            row.update(status="unstable", error=(record.get("error") or "?")[:200])
+        pos = np.load(npy) if os.path.getsize(npy) > 0 else None
+        by_case[(str(value), int(var["seed"]))] = (row, pos)
+    results = [by_case[(str(crumple_study.parse_value(str(v))), int(s))] for s in seeds for v in values]
+    rows = [r for r, _ in results]
+    crumple_study.write_tables(rows, out, title, label, writer="workflows/crumple_study.smk")
+    crumple_study.plot(results, values, seeds, out, title, label)
 
 
 def packing_row(record):

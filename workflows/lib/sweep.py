@@ -108,7 +108,7 @@ def draw_thumbnail(runner, work, png, radius):
 
 
 def run_point(runner, output, deck, variables, work, threads=1, retry=None, resume=True,
-              keep_work=False, record_failures=False, thumbnail=None):
+              keep_work=False, record_failures=False, thumbnail=None, measure=None, extra=None):
     """Runs one point of a study and writes its record to output.
 
     retry: variables replacing some of `variables` for a second run (in work/retry) when
@@ -118,7 +118,9 @@ def run_point(runner, output, deck, variables, work, threads=1, retry=None, resu
     record_failures (then a run cut short still raises when it can resume). work
     is removed on success unless keep_work (the example decks' plots; then its
     checkpoints are removed, so that a forced rerun starts afresh). thumbnail = (png, radius): a small picture of the final state, from the
-    checkpoint the deck wrote when it stopped (2D decks)."""
+    checkpoint the deck wrote when it stopped (2D decks). measure(folder): a dict of
+    measures of the final state in the run's work folder, kept as record["measures"].
+    extra: further keys of the record."""
     record = runner.run(deck, variables, work, resume, threads)
     if retry and unstable(record):
         first = record
@@ -131,8 +133,11 @@ def run_point(runner, output, deck, variables, work, threads=1, retry=None, resu
         raise RuntimeError(f"{deck} {variables}: {record['status']}: {record['error']} "
                            f"(its state stays in {work} for the next attempt)")
     os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
+    folder = os.path.join(work, "retry") if "retried_with" in record else work
+    if measure:
+        record["measures"] = measure(folder)
+    record.update(extra or {})
     if thumbnail:
-        folder = os.path.join(work, "retry") if "retried_with" in record else work
         record["thumbnail"] = os.path.basename(thumbnail[0]) if draw_thumbnail(
             runner, folder, thumbnail[0], thumbnail[1]) else None
     with open(output, "w") as fh:

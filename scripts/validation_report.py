@@ -220,6 +220,26 @@ CASES = [
                    "the strip's EA (shooting, in the deck); error |tip - elastica| / L; root edge "
                    "`clamped_edges`, the end shear a `line_load` on the tip edge",
          source="Timoshenko & Gere §2.7; the statics issue's shell obstacle course; docs/models.md §6.7"),
+    dict(id="strip_moment", family="shell",
+         title="Cantilever shell strip rolled up by an end moment, arc-length continuation",
+         deck="validation/shell_strip.lua", fixed={"load": "moment"},
+         ladder=("n", [2, 4, 8, 16], [2, 4]), h=lambda n: 1.0 / int(n),
+         integrators=(["none"], ["none"]), order=1.5,
+         reference="M = 2 pi EI / L as a `line_moment` on the tip edge, followed from lambda = 0 to 1 "
+                   "by `sim:continuation`; error: the largest |tip - reference| / L over the path. "
+                   "Reference: the rolled Koiter strip (uniform stretch s and rotation rate k, "
+                   "E h (s^2 - 1)/2 = -D k^2, D s^2 k = m), which turns 6.6e-4 further than the "
+                   "linear elastica's full circle at lambda = 1; the nodes keep their y (planar path)",
+         source="the statics issue's shell obstacle course; docs/models.md §6.4"),
+    dict(id="sphere_pressure", family="shell",
+         title="Closed spherical shell inflated by a pressure (Newton)",
+         deck="validation/shell_sphere_pressure.lua", fixed={},
+         ladder=("level", [1, 2, 3, 4], [1, 2, 3]), h=lambda l: 2.0 ** (1 - int(l)),
+         integrators=(["none"], ["none"]), order=1.5,
+         reference="uniform inflation of a Koiter sphere: 2 (1 + nu) (C_m e r - C_b b) = p r^2 with "
+                   "e = ((r/R)^2 - 1)/2, b = -(r - R)/R^2 (R = 1, h = 0.01, Y = 1e4, nu = 0.3, p = 3: "
+                   "w = 0.0105550); the radius read from the enclosed volume",
+         source="membrane theory of shells (Timoshenko & Woinowsky-Krieger §14); docs/models.md §6.4"),
     dict(id="cylinder", family="shell", title="Cylindrical bending of a Koiter shell",
          deck="validation/cylinder_bend.lua", fixed={},
          ladder=("n", [8, 16, 32, 64], [8, 16, 32]), h=lambda n: 1.0 / int(n),
@@ -403,6 +423,54 @@ def holdings_section():
     return lines + [""]
 
 
+CASE_BY_ID = {c["id"]: c for c in CASES}
+CSV_COLUMNS = ["case", "resolution", "integrator", "dt_mode", "dt", "rel_error", "wall_s",
+               "throughput", "status", "note", "error", "run_s", "cmd"]
+
+
+def ladder(case, fast):
+    """The runs of a case's resolution ladder, in report order: (value, integrator)."""
+    values = case["ladder"][2 if fast else 1]
+    integs = case["integrators"][1 if fast else 0]
+    return [(v, integ) for integ in integs for v in values]
+
+
+def dt_ladder(case, fast):
+    """The time-step ladder of a case (full report only): the finest resolution with each
+    dynamic integrator at dt = auto / factor; (value, integrator, factor)."""
+    if not case.get("dt_ladder") or fast:
+        return []
+    values = case["ladder"][1]
+    return [(values[-1], integ, f) for integ in case["integrators"][0]
+            if integ not in ("fire", "newton") for f in (2, 4)]
+
+
+def summarize(case, rows, fast, plot_dir=None):
+    """The observed orders of a case's rows (those of its last integrator) and its problems;
+    draws its work-precision plot into plot_dir."""
+    integs = list(dict.fromkeys(r["integrator"] for r in rows))
+    main_ords = orders(case, [r for r in rows if r["integrator"] == integs[-1]]) if integs else []
+    problems = []
+    if any(r["status"] != "ok" for r in rows):
+        problems.append("%s: %d failed runs" % (case["id"], sum(r["status"] != "ok" for r in rows)))
+    if fast and case["order"] and main_ords and main_ords[-1] < case["order"]:
+        problems.append("%s: observed order %.2f below the expected %.1f" %
+                        (case["id"], main_ords[-1], case["order"]))
+    if plot_dir is not None:
+        plot(Path(plot_dir) / ("%s.png" % case["id"]), case, rows)
+    return main_ords, problems
+
+
+def write_outputs(out, header, per_case, fast):
+    """OUT/validation.md and OUT/validation.csv from (case, rows, orders) triples."""
+    write_report(out, header, per_case, fast)
+    with open(out / "validation.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=CSV_COLUMNS, extrasaction="ignore")
+        w.writeheader()
+        for _, rows, _ in per_case:
+            w.writerows(rows)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--slender", default=str(REPO / "build" / "slender"))
@@ -420,7 +488,7 @@ def main(argv=None):
     out = Path(args.out)
     (out / "validation").mkdir(parents=True, exist_ok=True)
     started = datetime.datetime.now()
-    per_case, all_rows, problems = [], [], []
+    per_case, problems = [], []
     kept = {}
     if args.keep and (out / "validation.csv").is_file():
         with open(out / "validation.csv") as fh:
@@ -432,46 +500,26 @@ def main(argv=None):
         if case["id"] not in args.cases:
             if case["id"] in kept:
                 rows = kept[case["id"]]
-                integs = list(dict.fromkeys(r["integrator"] for r in rows))
-                main_ords = orders(case, [r for r in rows if r["integrator"] == integs[-1]])
-                per_case.append((case, rows, main_ords))
-                all_rows += rows
+                per_case.append((case, rows, summarize(case, rows, False)[0]))
             continue
-        values = case["ladder"][2 if args.fast else 1]
-        integs = case["integrators"][1 if args.fast else 0]
         rows = []
-        for integ in integs:
-            for v in values:
-                r = run_one(slender, case, v, integ, None, args.fast, args.timeout)
-                rows.append(r)
-                print("%-20s %s=%-8s %-7s %s" % (case["id"], case["ladder"][0], v, integ,
-                      "rel_error %.3e  wall %.3g s" % (r["rel_error"], r["wall_s"])
-                      if r["status"] == "ok" else "FAILED: %s" % r.get("error")), flush=True)
-        # the time-step ladder: the finest resolution, dynamic integrators, dt = auto / 2, / 4
-        if case.get("dt_ladder") and not args.fast:
-            for integ in integs:
-                auto = [r for r in rows if r["integrator"] == integ and r["resolution"] == values[-1]
-                        and r["status"] == "ok" and r.get("dt")]
-                if integ in ("fire", "newton") or not auto:
-                    continue
-                for f in (2, 4):
-                    r = run_one(slender, case, values[-1], integ, auto[0]["dt"] / f, False, args.timeout)
-                    rows.append(r)
-        ords = {}
-        for integ in integs:
-            ords[integ] = orders(case, [r for r in rows if r["integrator"] == integ])
-        main_ords = ords[integs[-1]]
-        if any(r["status"] != "ok" for r in rows):
-            problems.append("%s: %d failed runs" % (case["id"], sum(r["status"] != "ok" for r in rows)))
-        if args.fast and case["order"] and main_ords and main_ords[-1] < case["order"]:
-            problems.append("%s: observed order %.2f below the expected %.1f" %
-                            (case["id"], main_ords[-1], case["order"]))
+        for v, integ in ladder(case, args.fast):
+            r = run_one(slender, case, v, integ, None, args.fast, args.timeout)
+            rows.append(r)
+            print("%-20s %s=%-8s %-7s %s" % (case["id"], case["ladder"][0], v, integ,
+                  "rel_error %.3e  wall %.3g s" % (r["rel_error"], r["wall_s"])
+                  if r["status"] == "ok" else "FAILED: %s" % r.get("error")), flush=True)
+        for v, integ, f in dt_ladder(case, args.fast):
+            auto = [r for r in rows if r["integrator"] == integ and r["resolution"] == v
+                    and r["status"] == "ok" and r.get("dt")]
+            if auto:
+                rows.append(run_one(slender, case, v, integ, auto[0]["dt"] / f, False, args.timeout))
+        main_ords, case_problems = summarize(case, rows, args.fast, out / "validation")
+        problems += case_problems
         if case["order"]:
             print("%-20s observed order %s (expected >= %.1f)" % (
                 case["id"], ", ".join("%.2f" % o for o in main_ords), case["order"]), flush=True)
-        plot(out / "validation" / ("%s.png" % case["id"]), case, rows)
         per_case.append((case, rows, main_ords))
-        all_rows += rows
     elapsed = (datetime.datetime.now() - started).total_seconds()
     header = ["- date: %s" % started.strftime("%Y-%m-%d %H:%M"),
               "- git: `%s`" % (wp.git_describe() or "unknown"),
@@ -479,13 +527,7 @@ def main(argv=None):
     if kept:
         header.append("- rows of the cases not rerun kept from the previous report (--keep): %s" %
                       ", ".join(c for c in kept if c not in args.cases))
-    write_report(out, header, per_case, args.fast)
-    with open(out / "validation.csv", "w", newline="") as fh:
-        cols = ["case", "resolution", "integrator", "dt_mode", "dt", "rel_error", "wall_s",
-                "throughput", "status", "note", "error", "run_s", "cmd"]
-        w = csv.DictWriter(fh, fieldnames=cols, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(all_rows)
+    write_outputs(out, header, per_case, args.fast)
     print("wrote %s" % (out / "validation.md"))
     for m in problems:
         print("problem: %s" % m)

@@ -19,12 +19,14 @@ std::string g6(double v) {
 }  // namespace
 
 ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt) {
-  auto* fix = dynamic_cast<FixStyle*>(sim.find_style(opt.load));
+  Style* fix = sim.find_style(opt.load);
   if (!fix)
-    throw InputError("continuation: load must name a fix, and there is no fix '" + opt.load + "'");
+    throw InputError("continuation: load must name a fix or a shell, and there is no style '" +
+                     opt.load + "'");
   if (!fix->set_load_factor(1.0))
-    throw InputError("continuation: fix '" + opt.load + "' (" + fix->style_name() +
-                     ") has no load to scale (force/constant and moment2d have)");
+    throw InputError("continuation: " + std::string(fix->family_name()) + " '" + opt.load + "' (" +
+                     fix->style_name() +
+                     ") has no load to scale (force/constant, moment2d and koiter have)");
   if (!(opt.ds > 0) || !(opt.ds_max >= opt.ds) || !(opt.ds_min > 0) || !(opt.ds_min <= opt.ds))
     throw InputError("continuation: the steps need 0 < ds_min <= ds <= ds_max, got ds_min = " +
                      g6(opt.ds_min) + ", ds = " + g6(opt.ds) + ", ds_max = " + g6(opt.ds_max));
@@ -49,7 +51,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
   sim.compute_forces();
   q -= sys.forces();
   if (!(q.norm() > 0))
-    throw InputError("continuation: the load of fix '" + opt.load + "' acts on no free component");
+    throw InputError("continuation: the load of '" + opt.load + "' acts on no free component");
   double lambda = opt.lambda0;
   set_lambda(lambda);
   sim.compute_forces();

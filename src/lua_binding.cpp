@@ -258,7 +258,10 @@ ParamSpec continuation_spec() {
               "Hessians, docs/models.md §9.4), and reports where the count of unstable "
               "directions changes (limit and bifurcation points); returns the points taken and "
               "the last lambda");
-  s.string("load", "id of the fix whose load lambda scales (force/constant, moment2d)").required();
+  s.string("load",
+           "id of the style whose load lambda scales (fixes force/constant, moment2d; shell "
+           "koiter: load, line_load, line_moment, pressure)")
+      .required();
   s.real("lambda0",
          "load factor at the start (the state must be, or Newton must reach, an "
          "equilibrium there)")

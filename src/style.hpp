@@ -97,6 +97,10 @@ class Style {
   virtual void attach(Context&) {}
   virtual void save_state(StateMap&) const {}
   virtual void load_state(const StateMap&) {}
+  // Continuation (sim:continuation, docs/models.md §9.4): scales this style's load
+  // linearly by lambda (1: the load as the deck gave it). False where it has no load to
+  // scale (force/constant, moment2d and the koiter shell's loads have one).
+  virtual bool set_load_factor(double) { return false; }
   // After a checkpoint was read (nodes, chains and every style's state in place): what is
   // wrong with the loaded state (indices past the nodes or edges, short arrays), or "".
   virtual std::string check_loaded(const Context&) const { return ""; }
@@ -195,9 +199,6 @@ class FixStyle : public Style {
   // Adds forces; returns the potential energy of conservative fixes (else 0).
   virtual double post_force(Context&) { return 0.0; }
   virtual void end_of_step(Context&) {}
-  // Continuation (sim:continuation, docs/models.md §9.4): scales this fix's load linearly
-  // by lambda (1: the load as the deck gave it). False where the fix has no load to scale.
-  virtual bool set_load_factor(double) { return false; }
   // Fixes report their contacts' frequency as pairs do (walls in contact now).
   bool measures_frequency() const override { return true; }
 };

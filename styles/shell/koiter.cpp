@@ -103,12 +103,31 @@ class KoiterShell : public ShellStyle {
     s.add("line_load_edges", ParamType::StringList,
           "node groups whose boundary edges (both ends in the group) carry line_load")
         .def(std::vector<std::string>{});
+    s.vector("line_moment",
+             "moment per reference length on the boundary edges of line_moment_edges, as a "
+             "vector (its direction the axis, fixed in space): the work of |m| times the "
+             "rotation of the material fibre that crosses each edge, about that axis, followed "
+             "through full turns (§6.4), so an end moment can roll a strip up")
+        .length(3, 3);
+    s.add("line_moment_edges", ParamType::StringList,
+          "node groups whose boundary edges (both ends in the group) carry line_moment")
+        .def(std::vector<std::string>{});
+    s.real("pressure",
+           "follower pressure p on the side the normal a1 x a2 points away from (outwards on "
+           "the generated sphere): f_I = p * integral of N_I n over the current surface "
+           "(§6.4); its potential -p V, V the volume enclosed (closed surfaces)")
+        .def(0.0);
     s.output("stretch", "stretching energy of the last force evaluation");
     s.output("bend", "bending energy of the last force evaluation (ghost springs not included)");
     s.output("energy", "stretching plus bending energy");
     s.output("Eb_hat",
              "mean bending density: integral of U_b over the current area, divided by that area");
     s.output("area", "current area of the surface");
+    s.output("volume",
+             "volume enclosed by the current limit surface, 1/3 integral of x . n (closed "
+             "surfaces; computed where pressure is set)");
+    s.output("load_factor",
+             "lambda of a continuation: load, line_load, line_moment and pressure scale with it");
     s.output("omega",
              "highest angular frequency estimated by power iteration, for the stable step");
     s.output("elements", "number of elements (real triangles)");
@@ -130,7 +149,8 @@ class KoiterShell : public ShellStyle {
         growth_id_(p.has("growth") ? p.str("growth") : ""),
         area_factor_(p.boolean("growth_area_factor")),
         nquad_(static_cast<int>(p.integer("quadrature"))),
-        load_(p.vec3("load")) {
+        load_(p.vec3("load")),
+        pressure_(p.real("pressure")) {
     if (nquad_ == 2) throw InputError("shell 'koiter': quadrature must be 1 or 3");
     if (!sim.topology().find_surface(mesh_name_))
       throw InputError("shell 'koiter': no mesh named '" + mesh_name_ +
@@ -147,6 +167,17 @@ class KoiterShell : public ShellStyle {
     if (p.has("line_load")) {
       line_load_ = p.vec3("line_load");
       line_weights_ = edge_integrals(sim, p.strings("line_load_edges"));
+    }
+    if (p.has("line_moment") != !p.strings("line_moment_edges").empty())
+      throw InputError(
+          "shell 'koiter': line_moment and line_moment_edges go together (the moment per "
+          "length as a vector, and the node groups whose boundary edges carry it)");
+    if (p.has("line_moment")) {
+      const Vec3 m = p.vec3("line_moment");
+      if (!(m.norm() > 0))
+        throw InputError("shell 'koiter': line_moment must not be the zero vector");
+      moment_ = m.norm();
+      moment_points_ = edge_fibres(sim, p.strings("line_moment_edges"), m / m.norm());
     }
   }
 
@@ -171,10 +202,11 @@ class KoiterShell : public ShellStyle {
     if (load_.squaredNorm() > 0) {
       // consistent nodal loads, Phi_ext = -q . sum_I (integral N_I) u_I
       const auto& g = mesh();
+      const Vec3 q = load_factor_ * load_;
       for (int i = 0; i < g.mesh.n_nodes(); ++i) {
         const double A = lumped_[i] / (rho_ * h_);
-        sim.nodes().f[base_ + i] += A * load_;
-        ext -= A * load_.dot(x[base_ + i] - g.mesh.x[i]);
+        sim.nodes().f[base_ + i] += A * q;
+        ext -= A * q.dot(x[base_ + i] - g.mesh.x[i]);
       }
       sim.add_energy("external", ext);
     }
@@ -182,13 +214,16 @@ class KoiterShell : public ShellStyle {
       // on the control nodes of the edges' limit curves, ghosts included: their share
       // goes to the real nodes with the ghost rule below, as the element forces do
       const auto& g = mesh();
+      const Vec3 q = load_factor_ * line_load_;
       double e = 0;
       for (auto [i, w] : line_weights_) {
-        sim.nodes().f[base_ + i] += w * line_load_;
-        e -= w * line_load_.dot(x[base_ + i] - g.mesh.x[i]);
+        sim.nodes().f[base_ + i] += w * q;
+        e -= w * q.dot(x[base_ + i] - g.mesh.x[i]);
       }
       sim.add_energy("external", e);
     }
+    if (!moment_points_.empty()) add_moment(x, sim.nodes().f, sim);
+    if (pressure_ != 0) add_pressure(x, sim.nodes().f, sim);
     map_ghost_forces(x, sim.nodes().f);
     stretch_ = es;
     bend_ = eb;
@@ -199,7 +234,8 @@ class KoiterShell : public ShellStyle {
   // The exact Hessian (docs/models.md §9.7): the Jacobian of each Gauss point's nodal forces
   // of accumulate() by forward automatic differentiation over its stencil's coordinates,
   // then carried through the ghost rules as the forces are (a prescribed ghost is a linear
-  // combination of real nodes: H -> T^T H T). The uniform load is linear: nothing.
+  // combination of real nodes: H -> T^T H T). The dead loads are linear: nothing; the
+  // pressure follows the surface (below).
   bool add_hessian(Context& sim, Hessian& H) const override {
     for (Boundary r : rule_)
       if (r == Boundary::kCombined) return false;  // the ghost springs: not yet
@@ -301,16 +337,93 @@ class KoiterShell : public ShellStyle {
         }
       }
     }
+    if (!moment_points_.empty()) {
+      // -|m| w d_I d_J times the Hessian of the angle in the (u, v) plane
+      const double m = load_factor_ * moment_;
+      for (const MomentPoint& mp : moment_points_) {
+        Vec3 t = Vec3::Zero();
+        for (auto [i, d] : mp.rows) t += d * x[base_ + i];
+        const double u = t.dot(mp.e1), v = t.dot(mp.e2), r4 = std::pow(u * u + v * v, 2);
+        const Mat3 B =
+            (2 * u * v / r4) * (mp.e1 * mp.e1.transpose() - mp.e2 * mp.e2.transpose()) +
+            ((v * v - u * u) / r4) * (mp.e1 * mp.e2.transpose() + mp.e2 * mp.e1.transpose());
+        for (auto [i, di] : mp.rows)
+          for (auto [j, dj] : mp.rows) {
+            const Mat3 b = (-m * mp.w * di * dj) * B;
+            for (auto [ri, wr] : via[i])
+              for (auto [ci, wc] : via[j]) H.add(ri, ci, Mat3(wr.transpose() * b * wc));
+          }
+      }
+    }
+    const double p = load_factor_ * pressure_;
+    if (p != 0) {
+      auto skew = [](const Vec3& a) {
+        Mat3 m;
+        m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+        return m;
+      };
+      const bool closed = g.ghosts.empty();
+      for (const GaussPoint& gp : gauss_) {
+        const shell::ShapeRow* R = &rows_[gp.row0];
+        Vec3 X = Vec3::Zero(), a1 = X, a2 = X;
+        for (int r = 0; r < gp.nrows; ++r) {
+          X += R[r].N * x[R[r].node];
+          a1 += R[r].Nv * x[R[r].node];
+          a2 += R[r].Nw * x[R[r].node];
+        }
+        const Mat3 A1 = skew(a1), A2 = skew(a2), SX = skew(X);
+        for (int r = 0; r < gp.nrows; ++r)
+          for (int col = 0; col < gp.nrows; ++col) {
+            const shell::ShapeRow &a = R[r], &c = R[col];
+            Mat3 b;
+            if (closed) {
+              // -p/3 times the second derivative of x . (a1 x a2), a trilinear form
+              b = -(p / 3.0) * gp.wq *
+                  (A2 * (a.Nv * c.N - a.N * c.Nv) + A1 * (a.N * c.Nw - a.Nw * c.N) +
+                   SX * (a.Nw * c.Nv - a.Nv * c.Nw));
+            } else {
+              // the follower load: dF_I/dx_J = p wq N_I (Nw_J [a1]x - Nv_J [a2]x); its
+              // symmetric part (the skew part, boundary terms, has no place in a
+              // symmetric solver)
+              const Mat3 Brc = p * gp.wq * a.N * (c.Nw * A1 - c.Nv * A2);
+              const Mat3 Bcr = p * gp.wq * c.N * (a.Nw * A1 - a.Nv * A2);
+              b = -0.5 * (Brc + Bcr.transpose());
+            }
+            for (auto [ri, wr] : via[a.node - base_])
+              for (auto [ci, wc] : via[c.node - base_])
+                H.add(ri, ci, Mat3(wr.transpose() * b * wc));
+          }
+      }
+    }
+    return true;
+  }
+  bool set_load_factor(double lambda) override {
+    if (load_.squaredNorm() == 0 && line_weights_.empty() && moment_points_.empty() &&
+        pressure_ == 0)
+      return false;
+    load_factor_ = lambda;
     return true;
   }
 
   double max_frequency(const Context&) const override { return omega_; }
   // The frequency estimate depends on the configuration and growth of the first run; a
   // continued run keeps it so that its automatic step is the one it would have taken.
-  void save_state(StateMap& st) const override { st["omega"] = {omega_}; }
+  void save_state(StateMap& st) const override {
+    st["omega"] = {omega_};
+    st["load_factor"] = {load_factor_};
+    if (!moment_points_.empty()) {
+      auto& phi = st["moment_angles"];
+      for (const MomentPoint& mp : moment_points_) phi.push_back(mp.phi);
+    }
+  }
   void load_state(const StateMap& st) override {
     if (auto it = st.find("omega"); it != st.end() && !it->second.empty() && it->second[0] > 0)
       omega_ = it->second[0];
+    if (auto it = st.find("load_factor"); it != st.end() && !it->second.empty())
+      load_factor_ = it->second[0];
+    if (auto it = st.find("moment_angles");
+        it != st.end() && it->second.size() == moment_points_.size())
+      for (std::size_t k = 0; k < moment_points_.size(); ++k) moment_points_[k].phi = it->second[k];
   }
 
   double value(const std::string& key) const override {
@@ -319,6 +432,8 @@ class KoiterShell : public ShellStyle {
     if (key == "energy") return stretch_ + bend_;
     if (key == "Eb_hat") return area_ > 0 ? ub_integral_ / area_ : 0.0;
     if (key == "area") return area_;
+    if (key == "volume") return volume_;
+    if (key == "load_factor") return load_factor_;
     if (key == "omega") return omega_;
     if (key == "elements") return n_elem_;
     if (key == "nodes") return mesh().n_real_nodes;
@@ -424,6 +539,13 @@ class KoiterShell : public ShellStyle {
            r == Boundary::kClampedEdge;
   }
 
+  struct MomentPoint {
+    double w = 0;                              // quadrature weight times the edge's length
+    Vec3 e1, e2;                               // the plane of the angle (normal to the axis)
+    std::vector<std::pair<int, double>> rows;  // (mesh node, d_I): t = sum d_I x_I
+    double phi = 0;                            // the angle, continued through full turns
+  };
+
   // The boundary edges (each has one ghost) whose two end nodes lie in one of the groups.
   std::vector<std::size_t> edges_in(Context& sim, const std::string& key,
                                     const std::vector<std::string>& groups) const {
@@ -492,6 +614,83 @@ class KoiterShell : public ShellStyle {
     for (std::size_t i = 0; i < sum.size(); ++i)
       if (sum[i] != 0) out.push_back({static_cast<int>(i), sum[i]});
     return out;
+  }
+
+  // The fibres that cross the listed boundary edges (4 Gauss–Legendre points per edge):
+  // the material direction t = c^a a_a that is the outward conormal nu0 in the reference,
+  // as a stencil d_I = c^a N_I,a (c^a from A_ab c^b = A_a . nu0), and the plane normal to
+  // the axis in which its angle is measured (e1 = nu0 projected, e2 = axis x e1).
+  std::vector<MomentPoint> edge_fibres(Context& sim, const std::vector<std::string>& groups,
+                                       const Vec3& axis) {
+    const auto& g = mesh();
+    const double a = 0.5 - std::sqrt(3.0 / 7 + 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
+    const double b = 0.5 - std::sqrt(3.0 / 7 - 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
+    const double wa = (18 - std::sqrt(30.0)) / 72, wb = (18 + std::sqrt(30.0)) / 72;
+    const std::array<std::pair<double, double>, 4> gl = {
+        {{a, wa}, {b, wb}, {1 - b, wb}, {1 - a, wa}}};
+    std::vector<MomentPoint> out;
+    for (std::size_t k : edges_in(sim, "line_moment_edges", groups)) {
+      const auto& gh = g.ghosts[k];
+      int t = -1;
+      for (int e = 0; e < g.n_real_tris && t < 0; ++e) {
+        const auto& tri = g.mesh.tri[e];
+        const auto has = [&](int n) { return tri[0] == n || tri[1] == n || tri[2] == n; };
+        if (has(gh.b0) && has(gh.b2) && has(gh.interior)) t = e;
+      }
+      if (t < 0) throw InputError("shell 'koiter': a boundary edge without its triangle");
+      const shell::Tri c = shell::oriented_element(g, t);
+      const Vec3 X0 = g.mesh.x[gh.b0], X2 = g.mesh.x[gh.b2];
+      const double length = (X2 - X0).norm();
+      for (auto [s, wq] : gl) {
+        double l[3] = {0, 0, 0};
+        for (int j = 0; j < 3; ++j) {
+          if (c[j] == gh.b0) l[j] = 1 - s;
+          if (c[j] == gh.b2) l[j] = s;
+        }
+        const shell::Stencil st = shell::evaluate(g, c, l[1], l[2]);
+        Vec3 A1 = Vec3::Zero(), A2 = A1;
+        for (const auto& r : st) {
+          A1 += r.Nv * g.mesh.x[r.node];
+          A2 += r.Nw * g.mesh.x[r.node];
+        }
+        Vec3 nu = (X2 - X0).cross(A1.cross(A2)).normalized();
+        if (nu.dot(g.mesh.x[gh.interior] - X0) > 0) nu = -nu;  // outwards
+        Mat2 A;
+        A << A1.dot(A1), A1.dot(A2), A1.dot(A2), A2.dot(A2);
+        const Eigen::Vector2d cc = A.inverse() * Eigen::Vector2d(A1.dot(nu), A2.dot(nu));
+        MomentPoint mp;
+        mp.w = wq * length;
+        const Vec3 e1 = nu - nu.dot(axis) * axis;
+        if (e1.norm() < 1e-3)
+          throw InputError(
+              "shell 'koiter': line_moment points along the outward direction of an edge of "
+              "line_moment_edges: a twisting moment, which the fibre rotation does not carry; "
+              "give a moment about the edge (a bending moment)");
+        mp.e1 = e1.normalized();
+        mp.e2 = axis.cross(mp.e1);
+        for (const auto& r : st)
+          if (double d = cc[0] * r.Nv + cc[1] * r.Nw; d != 0) mp.rows.push_back({r.node, d});
+        out.push_back(std::move(mp));
+      }
+    }
+    return out;
+  }
+
+  // The line moment (docs/models.md §6.4): potential -|m| sum w phi, phi the angle of each
+  // fibre t in the plane (e1, e2), continued through full turns from its last value.
+  void add_moment(const std::vector<Vec3>& x, std::vector<Vec3>& f, Context& sim) {
+    const double m = load_factor_ * moment_;
+    double e = 0;
+    for (MomentPoint& mp : moment_points_) {
+      Vec3 t = Vec3::Zero();
+      for (auto [i, d] : mp.rows) t += d * x[base_ + i];
+      const double u = t.dot(mp.e1), v = t.dot(mp.e2), r2 = u * u + v * v;
+      mp.phi += std::remainder(std::atan2(v, u) - mp.phi, 2 * M_PI);
+      e -= m * mp.w * mp.phi;
+      const Vec3 dphi = (-v / r2) * mp.e1 + (u / r2) * mp.e2;
+      for (auto [i, d] : mp.rows) f[base_ + i] += (m * mp.w * d) * dphi;
+    }
+    sim.add_energy("external", e);
   }
 
   // Each ghost's rule: `boundary`, unless its edge (both boundary nodes) lies in one of
@@ -663,6 +862,39 @@ class KoiterShell : public ShellStyle {
     }
   }
 
+  // The pressure (docs/models.md §6.4). On a closed surface: p times the exact gradient of
+  // the enclosed volume as integrated, V = 1/3 sum_gp wq x . (a1 x a2), so that the load
+  // derives from -p V to round-off and Newton sees a symmetric, exact Hessian (the plain
+  // follower form below differs from it by the quadrature's error). On an open surface: the
+  // follower load f_I += p sum_gp wq N_I (a1 x a2), the current normal times the current
+  // area element (it has no potential there).
+  void add_pressure(const std::vector<Vec3>& x, std::vector<Vec3>& f, Context& sim) {
+    const double p = load_factor_ * pressure_;
+    const bool closed = mesh().ghosts.empty();
+    double vol = 0;
+    for (const GaussPoint& gp : gauss_) {
+      const shell::ShapeRow* R = &rows_[gp.row0];
+      Vec3 X = Vec3::Zero(), a1 = X, a2 = X;
+      for (int r = 0; r < gp.nrows; ++r) {
+        const Vec3& q = x[R[r].node];
+        X += R[r].N * q;
+        a1 += R[r].Nv * q;
+        a2 += R[r].Nw * q;
+      }
+      const Vec3 n = gp.wq * a1.cross(a2);
+      vol += X.dot(n) / 3.0;
+      if (closed) {
+        const Vec3 c1 = gp.wq * a2.cross(X), c2 = gp.wq * X.cross(a1);
+        for (int r = 0; r < gp.nrows; ++r)
+          f[R[r].node] += (p / 3.0) * (R[r].N * n + R[r].Nv * c1 + R[r].Nw * c2);
+      } else {
+        for (int r = 0; r < gp.nrows; ++r) f[R[r].node] += (p * R[r].N) * n;
+      }
+    }
+    volume_ = vol;
+    sim.add_energy("external", -p * vol);
+  }
+
   void place_ghosts(std::vector<Vec3>& x) const {
     const auto& g = mesh();
     for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
@@ -796,6 +1028,9 @@ class KoiterShell : public ShellStyle {
   bool area_factor_;
   int nquad_;
   Vec3 load_;
+  double pressure_ = 0;
+  double load_factor_ = 1.0;  // lambda of a continuation (docs/models.md §9.4)
+  double volume_ = 0;
   double Cm_ = 0, Cb_ = 0;
   std::shared_ptr<const shell::GhostedMesh> mesh_;
   int base_ = 0, n_elem_ = 0;
@@ -806,6 +1041,8 @@ class KoiterShell : public ShellStyle {
   std::vector<Boundary> rule_;  // per ghost
   std::vector<Mat3> reflect_;   // per ghost of a clamped edge: 2 n n^T - 1
   Vec3 line_load_ = Vec3::Zero();
+  std::vector<MomentPoint> moment_points_;
+  double moment_ = 0;                                 // |line_moment|
   std::vector<std::pair<int, double>> line_weights_;  // (mesh node, integral of N along edges)
   double mean_edge_ = 0, lmin_ = 0;
   GrowthStyle* growth_ = nullptr;

@@ -9,6 +9,9 @@ convergence). R_C is the energy criterion of compute core_radius; R_C_s (U_s bel
 of its peak) is logged next to it.
 
   /usr/bin/python3 scripts/shell_core_radius.py --h 0.04 0.02 0.01 0.005 --levels 2 3 4 5
+
+The same study as a Snakemake workflow (one job per run, on Slurm too):
+workflows/shell_core_radius.smk (workflows/README.md).
 """
 import argparse
 import csv

@@ -22,6 +22,9 @@ order is below its expectation, 2 usage error.
 
 --keep takes the rows of the cases not rerun from the existing OUT/validation.csv, so the
 report still covers every case.
+
+The same report as a Snakemake workflow, one job per run, resumable and parallel (only the
+missing rows run): workflows/validation.smk (workflows/README.md).
 """
 import argparse
 import csv

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The study workflows on this machine (workflows/profiles/local: snakemake --cores 2),
 # each with its two-point smoke config, in a temporary folder:
-#  - phase diagram, pack3d phi_max, example suite, crumpling study: per-point JSON records, the tables
+#  - phase diagram, pack3d phi_max, example suite, crumpling study, validation report: per-point JSON records, the tables
 #    (right rows, sane values) and the plots;
 #  - partial rerun: a deleted point is the only deck that runs again (dry run, then run);
 #  - resume: runs cut by a timeout leave their checkpoints, and the next call continues
@@ -179,4 +179,51 @@ for key in ("phi", "steps", "contacts", "loops", "ab_ratio"):  # the restart is 
 assert 0 < rec["measures"]["outer_share"] < 1, rec["measures"]
 PY
 echo "crumple study: 2 values, table, picture; a point cut by a timeout continued to the uninterrupted result ($((SECONDS - t0)) s)"
+
+# the validation report: one job per row, the script's rows and orders; a run that fails
+# makes the checked report fail, naming the case
+t0=$SECONDS
+study validation || { tail -n 30 "$tmp/validation.log"; fail "validation"; }
+/usr/bin/python3 "$repo/scripts/validation_report.py" --slender "$bin" --fast --out "$tmp/validation_script" \
+  --cases cantilever_small sphere_pressure > "$tmp/validation_script.log" 2>&1 ||
+  { tail -n 20 "$tmp/validation_script.log"; fail "the script's report"; }
+check validation << PY
+import csv, os, sys
+results = sys.argv[1]
+key = lambda r: (r["case"], r["resolution"], r["integrator"], r["status"], r["rel_error"])
+flow = [key(r) for r in csv.DictReader(open(os.path.join(results, "validation.csv")))]
+script = [key(r) for r in csv.DictReader(open("$tmp/validation_script/validation.csv"))]
+assert len(flow) == 6 and flow == script, (flow, script)  # the decks are deterministic
+report = open(os.path.join(results, "validation.md")).read()
+assert "Closed spherical shell inflated by a pressure" in report and "observed order: 1.9" in report, report
+assert open(os.path.join(results, "problems.txt")).read() == ""
+for case in ("cantilever_small", "sphere_pressure"):
+    assert os.path.getsize(os.path.join(results, "validation", case + ".png")) > 1000, case
+PY
+if study validation --config slender=/bin/false results=results/validation_broken 'cases=[sphere_pressure]'; then
+  fail "the checked report passed with failing runs"
+fi
+grep -q "sphere_pressure: 3 failed runs" "$tmp/validation/results/validation_broken/problems.txt" ||
+  { tail -n 30 "$tmp/validation.log"; fail "the failed runs are not named"; }
+echo "validation: 6 rows equal the script's, a failing run fails the checked report ($((SECONDS - t0)) s)"
+
+# the shell h ladder (e-cone core radius): a row per (h, level), the deck's own numbers
+t0=$SECONDS
+study shell_core_radius || { tail -n 30 "$tmp/shell_core_radius.log"; fail "shell_core_radius"; }
+mkdir -p "$tmp/econe_ref"
+(cd "$tmp/econe_ref" && "$bin" -q "$repo/examples/shells/econe.lua" -v fast=1 -v h=0.04 -v phi_max=1.0 \
+  -v contact=0 -v plots=0 -v edge=0.25 -v refine_center=0.3 -v refine_levels=1 -v out=o > run.log 2>&1) ||
+  fail "the e-cone reference run"
+check shell_core_radius << PY
+import csv, os, sys
+results = sys.argv[1]
+rows = {float(r["h"]): r for r in csv.DictReader(open(os.path.join(results, "core_radius.csv")))}
+assert sorted(rows) == [0.02, 0.04] and all(r["status"] == "ok" for r in rows.values()), rows
+ref = list(csv.DictReader(open("$tmp/econe_ref/o/econe.csv")))[-1]
+for key in ("R_C", "R_C_s", "Eb_hat"):  # the row is the deck's last log line
+    assert float(rows[0.04][key]) == float(ref[key]), (key, rows[0.04][key], ref[key])
+assert all(0 < float(r["R_C"]) < 1 and int(r["triangles"]) > 0 for r in rows.values()), rows
+assert os.path.getsize(os.path.join(results, "core_radius.png")) > 1000
+PY
+echo "shell core radius: 2 thicknesses, the deck's own numbers, table and picture ($((SECONDS - t0)) s)"
 echo "workflow local: ok"

@@ -243,6 +243,17 @@ CASES = [
                    "e = ((r/R)^2 - 1)/2, b = -(r - R)/R^2 (R = 1, h = 0.01, Y = 1e4, nu = 0.3, p = 3: "
                    "w = 0.0105550); the radius read from the enclosed volume",
          source="membrane theory of shells (Timoshenko & Woinowsky-Krieger §14); docs/models.md §6.4"),
+    dict(id="scordelis_lo", family="shell",
+         title="Scordelis-Lo roof: cylindrical shell on rigid diaphragms under self weight (Newton)",
+         deck="validation/scordelis_lo.lua", fixed={},
+         ladder=("n", [4, 8, 16, 32, 64], [8, 16]), h=lambda n: 1.0 / int(n),
+         integrators=(["none"], ["none"]), order=1.5,
+         reference="vertical deflection 0.3006 at the middle of a free edge (linear Kirchhoff-Love; "
+                   "R = 25, L = 50, +-40 degrees, t = 0.25, E = 4.32e8, nu = 0, weight 90 per area); "
+                   "ends `diaphragm_edges`, free edges `free_ghosts`, the load scaled by 1e-3 for the "
+                   "linear response; the reference has four digits (1.7e-4)",
+         source="MacNeal & Harder, Finite Elem. Anal. Des. 1 (1985) 3; Kiendl et al., CMAME 198 "
+                "(2009) 3902 for the Kirchhoff-Love value"),
     dict(id="cylinder", family="shell", title="Cylindrical bending of a Koiter shell",
          deck="validation/cylinder_bend.lua", fixed={},
          ladder=("n", [8, 16, 32, 64], [8, 16, 32]), h=lambda n: 1.0 / int(n),

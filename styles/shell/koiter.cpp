@@ -43,8 +43,18 @@ struct GaussPoint {
 class KoiterShell : public ShellStyle {
   // the ghost rule as a value, not the deck's string: it is tested every step
   // (kClampedEdge: the second-order clamp of clamped_edges; kClamped: `boundary =
-  // "clamped"`, which holds the first row too)
-  enum class Boundary { kCombined, kMirror, kFreeGhosts, kClamped, kSimplySupported, kClampedEdge };
+  // "clamped"`, which holds the first row too; kSymmetry, kDiaphragm: symmetry_edges and
+  // diaphragm_edges, reflected like kClampedEdge with their own reflection)
+  enum class Boundary {
+    kCombined,
+    kMirror,
+    kFreeGhosts,
+    kClamped,
+    kSimplySupported,
+    kClampedEdge,
+    kSymmetry,
+    kDiaphragm
+  };
 
  public:
   static ParamSpec spec(const std::string& name) {
@@ -78,6 +88,19 @@ class KoiterShell : public ShellStyle {
     s.add("supported_edges", ParamType::StringList,
           "node groups whose boundary edges are simply supported (u_g = -u_p, boundary "
           "nodes held); the other edges follow `boundary`")
+        .def(std::vector<std::string>{});
+    s.add("symmetry_edges", ParamType::StringList,
+          "node groups whose boundary edges lie on a symmetry plane normal to x, y or z "
+          "(the edge's outward direction): the displacement normal to the plane is held on "
+          "the edge and odd across it, the others even (u_g = (1 - 2 nu nu^T) u_p), so the "
+          "surface meets the plane at a right angle (§6.7)")
+        .def(std::vector<std::string>{});
+    s.add("diaphragm_edges", ParamType::StringList,
+          "node groups whose boundary edges rest on a rigid diaphragm normal to x, y or z "
+          "(the edge's outward direction): the displacement in the diaphragm's plane is "
+          "held on the edge and odd across it, the one normal to it free and even (u_g = "
+          "(2 nu nu^T - 1) u_p): no bending moment, no force along the edge's outward "
+          "direction at nu = 0 (§6.7)")
         .def(std::vector<std::string>{});
     s.real("k_ghost", "spring of the combined method (default Y h)").positive();
     s.real("ghost_lambda", "dead zone of the ghost spring, fraction of the mean edge")
@@ -159,7 +182,8 @@ class KoiterShell : public ShellStyle {
     Cm_ = Y_ * h_ / (1 - nu_ * nu_);
     Cb_ = Y_ * h_ * h_ * h_ / (12 * (1 - nu_ * nu_));
     precompute(sim);
-    assign_edge_rules(sim, p.strings("supported_edges"), p.strings("clamped_edges"));
+    assign_edge_rules(sim, p.strings("supported_edges"), p.strings("clamped_edges"),
+                      p.strings("symmetry_edges"), p.strings("diaphragm_edges"));
     if (p.has("line_load") != !p.strings("line_load_edges").empty())
       throw InputError(
           "shell 'koiter': line_load and line_load_edges go together (the load per length, "
@@ -255,7 +279,7 @@ class KoiterShell : public ShellStyle {
         via[gh.node] = {{base_ + gh.b0, I}, {base_ + gh.b2, I}, {base_ + gh.interior, -I}};
       else if (rule_[k] == Boundary::kSimplySupported)
         via[gh.node] = {{base_ + partner_[k], -I}};
-      else if (rule_[k] == Boundary::kClampedEdge)
+      else if (reflected(rule_[k]))
         via[gh.node] = {{base_ + partner_[k], reflect_[k]}};
     }
     auto dot = [](const V& a, const V& b) { return AD(a.dot(b)); };
@@ -533,10 +557,13 @@ class KoiterShell : public ShellStyle {
   static bool kinematic(Boundary r) {
     return r != Boundary::kCombined && r != Boundary::kFreeGhosts;
   }
-  // the rule holds the edge's boundary nodes
+  // the rule holds (components of) the edge's boundary nodes
   static bool holds_edge(Boundary r) {
-    return r == Boundary::kSimplySupported || r == Boundary::kClamped ||
-           r == Boundary::kClampedEdge;
+    return r == Boundary::kSimplySupported || r == Boundary::kClamped || reflected(r);
+  }
+  // the ghost is its partner's displacement reflected by reflect_ (the per-edge rules)
+  static bool reflected(Boundary r) {
+    return r == Boundary::kClampedEdge || r == Boundary::kSymmetry || r == Boundary::kDiaphragm;
   }
 
   struct MomentPoint {
@@ -694,26 +721,62 @@ class KoiterShell : public ShellStyle {
   }
 
   // Each ghost's rule: `boundary`, unless its edge (both boundary nodes) lies in one of
-  // the node groups of supported_edges or clamped_edges (the clamp wins where both do).
+  // the node groups of supported_edges, symmetry_edges, diaphragm_edges or clamped_edges
+  // (the later in this list wins where several name an edge).
   void assign_edge_rules(Context& sim, const std::vector<std::string>& supported,
-                         const std::vector<std::string>& clamped) {
+                         const std::vector<std::string>& clamped,
+                         const std::vector<std::string>& symmetry,
+                         const std::vector<std::string>& diaphragm) {
     const auto& g = mesh();
     rule_.assign(g.ghosts.size(), boundary_);
     reflect_.assign(g.ghosts.size(), Mat3::Identity());
+    edge_bits_.assign(g.ghosts.size(), kMaskAll);
     auto mark = [&](const std::string& key, const std::vector<std::string>& groups, Boundary r) {
       for (std::size_t k : edges_in(sim, key, groups)) rule_[k] = r;
     };
     mark("supported_edges", supported, Boundary::kSimplySupported);
+    mark("symmetry_edges", symmetry, Boundary::kSymmetry);
+    mark("diaphragm_edges", diaphragm, Boundary::kDiaphragm);
     mark("clamped_edges", clamped, Boundary::kClampedEdge);
     for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
-      if (rule_[k] != Boundary::kClampedEdge) continue;
-      // the reference normal of the edge's triangle: the ghost's displacement is its
+      if (!reflected(rule_[k])) continue;
+      // the reference normal of the edge's triangle: the clamp's ghost displacement is its
       // partner's reflected in the tangent plane (normal part kept, in-plane part negated)
       const auto& gh = g.ghosts[k];
-      const Vec3 n = (g.mesh.x[gh.b2] - g.mesh.x[gh.b0])
-                         .cross(g.mesh.x[gh.interior] - g.mesh.x[gh.b0])
-                         .normalized();
-      reflect_[k] = 2.0 * n * n.transpose() - Mat3::Identity();
+      const Vec3 e = g.mesh.x[gh.b2] - g.mesh.x[gh.b0];
+      const Vec3 n = e.cross(g.mesh.x[gh.interior] - g.mesh.x[gh.b0]).normalized();
+      if (rule_[k] == Boundary::kClampedEdge) {
+        reflect_[k] = 2.0 * n * n.transpose() - Mat3::Identity();
+        continue;
+      }
+      // the edge's outward direction in the tangent plane: the normal of the symmetry
+      // plane or diaphragm, which must be a coordinate axis (the held components are)
+      Vec3 nu = e.cross(n).normalized();
+      if (nu.dot(g.mesh.x[gh.interior] - g.mesh.x[gh.b0]) > 0) nu = -nu;
+      int axis = 0;
+      nu.cwiseAbs().maxCoeff(&axis);
+      if (std::abs(nu[axis]) < 1 - 1e-6) {
+        char buf[400];
+        std::snprintf(buf, sizeof buf,
+                      "shell 'koiter': %s holds the edge from (%g, %g, %g) to (%g, %g, %g), "
+                      "whose outward direction (%.4g, %.4g, %.4g) is not along x, y or z; "
+                      "symmetry planes and diaphragms here are normal to a coordinate axis",
+                      rule_[k] == Boundary::kSymmetry ? "symmetry_edges" : "diaphragm_edges",
+                      g.mesh.x[gh.b0].x(), g.mesh.x[gh.b0].y(), g.mesh.x[gh.b0].z(),
+                      g.mesh.x[gh.b2].x(), g.mesh.x[gh.b2].y(), g.mesh.x[gh.b2].z(), nu.x(), nu.y(),
+                      nu.z());
+        throw InputError(buf);
+      }
+      nu = Vec3::Unit(axis);
+      const Mat3 odd_normal = Mat3::Identity() - 2.0 * nu * nu.transpose();
+      const int bit = axis == 0 ? kMaskX : axis == 1 ? kMaskY : kMaskZ;
+      if (rule_[k] == Boundary::kSymmetry) {
+        reflect_[k] = odd_normal;
+        edge_bits_[k] = bit;
+      } else {
+        reflect_[k] = -odd_normal;
+        edge_bits_[k] = kMaskAll & ~bit;
+      }
     }
   }
 
@@ -740,11 +803,15 @@ class KoiterShell : public ShellStyle {
     for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
       const auto& gh = g.ghosts[k];
       if (kinematic(rule_[k])) mask[base_ + gh.node] = kMaskAll;
-      if (holds_edge(rule_[k])) mask[base_ + gh.b0] = mask[base_ + gh.b2] = kMaskAll;
+      if (holds_edge(rule_[k])) {
+        mask[base_ + gh.b0] |= edge_bits_[k];
+        mask[base_ + gh.b2] |= edge_bits_[k];
+      }
       if (rule_[k] == Boundary::kClamped) mask[base_ + gh.interior] = kMaskAll;  // first row
     }
     for (int i = 0; i < g.mesh.n_nodes(); ++i)
-      if (mask[base_ + i] == kMaskAll) sim.nodes().v[base_ + i].setZero();
+      for (int c = 0; c < 3; ++c)
+        if (mask[base_ + i] & (1 << c)) sim.nodes().v[base_ + i][c] = 0;
   }
 
   void update_growth(Context& sim) {
@@ -908,6 +975,8 @@ class KoiterShell : public ShellStyle {
           x[base_ + gn] = g.mesh.x[gn] - (x[base_ + pn] - g.mesh.x[pn]);
           break;
         case Boundary::kClampedEdge:
+        case Boundary::kSymmetry:
+        case Boundary::kDiaphragm:
           x[base_ + gn] = g.mesh.x[gn] + reflect_[k] * (x[base_ + pn] - g.mesh.x[pn]);
           break;
         default:
@@ -933,7 +1002,7 @@ class KoiterShell : public ShellStyle {
       } else if (rule_[k] == Boundary::kSimplySupported) {
         f[base_ + partner_[k]] -= f[base_ + gh.node];
         f[base_ + gh.node].setZero();
-      } else if (rule_[k] == Boundary::kClampedEdge) {
+      } else if (reflected(rule_[k])) {
         f[base_ + partner_[k]] += reflect_[k].transpose() * f[base_ + gh.node];
         f[base_ + gh.node].setZero();
       } else if (rule_[k] == Boundary::kCombined) {
@@ -1039,6 +1108,7 @@ class KoiterShell : public ShellStyle {
   std::vector<double> lumped_;
   std::vector<int> partner_;
   std::vector<Boundary> rule_;  // per ghost
+  std::vector<int> edge_bits_;  // per ghost: the components its edge's rule holds
   std::vector<Mat3> reflect_;   // per ghost of a clamped edge: 2 n n^T - 1
   Vec3 line_load_ = Vec3::Zero();
   std::vector<MomentPoint> moment_points_;

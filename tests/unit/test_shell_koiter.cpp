@@ -278,6 +278,81 @@ TEST(KoiterShell, LineMomentIsConsistentAndCountsTurns) {
   EXPECT_NEAR(flat->potential_energy(), -0.5 * m * 0.6 * 12.0, 1e-9);
 }
 
+// Symmetry planes and diaphragms: a symmetry edge holds the component normal to its plane,
+// a diaphragm the two in its plane (corners: both); forces are the gradient of the energy
+// and the Hessian that of the forces through the reflected ghosts; an edge whose outward
+// direction is not a coordinate axis is refused.
+TEST(KoiterShell, SymmetryAndDiaphragmEdges) {
+  auto sim = strip_with_edge_groups(P({{"thickness", 0.05},
+                                       {"boundary", std::string("mirror")},
+                                       {"clamped_edges", std::vector<std::string>{"root"}},
+                                       {"symmetry_edges", std::vector<std::string>{"side"}},
+                                       {"diaphragm_edges", std::vector<std::string>{"tip"}},
+                                       {"load", std::vector<double>{0.1, 0.2, -0.3}}}),
+                                    false);
+  sim->set_integrator("fire", P({}));
+  sim->run(RunOptions{0, 0, {}});
+  const auto& mask = sim->nodes().require<int>(kHeldComponents, 0);
+  auto on = [&](int i, double x, double y) {
+    return std::abs(sim->nodes().x[i].x() - x) < 1e-12 &&
+           std::abs(sim->nodes().x[i].y() - y) < 1e-12;
+  };
+  for (int i : sim->group("side")) {
+    if (!on(i, 0, 0) && !on(i, 1, 0)) {
+      EXPECT_EQ(mask[i], kMaskY) << "side node " << i;
+    }
+  }
+  for (int i : sim->group("tip")) EXPECT_EQ(mask[i], kMaskY | kMaskZ) << "tip node " << i;
+  randomize(*sim, 0.03, 9);
+  sim->compute_forces();
+  EXPECT_LT(fd_force_error(*sim, 1e-6), 2e-6);
+  EXPECT_LT(fd_hessian_error(*sim, 1e-6), 1e-6);
+  try {  // the curved strip's side edge leans out of the y = 0 plane
+    strip_with_edge_groups(
+        P({{"thickness", 0.05}, {"symmetry_edges", std::vector<std::string>{"side"}}}));
+    ADD_FAILURE() << "a symmetry edge off the coordinate planes was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not along x, y or z"), std::string::npos) << e.what();
+  }
+}
+
+// Half a simply supported plate with a symmetry edge along its middle deflects as the whole
+// plate does (the same load, Newton): the symmetry rule is the plate's own symmetry.
+TEST(KoiterShell, SymmetryEdgeHalvesTheSupportedPlate) {
+  auto centre_deflection = [](double width, int nx, bool half) {
+    auto m = shell::make_rectangle(width, 1.0, nx, 8);
+    auto sim = std::make_unique<Simulation>(3, 2);
+    sim->verbose = false;
+    shell::add_surface(*sim, "s", m, 0.0);
+    std::vector<int> mid;
+    for (int i = 0; i < static_cast<int>(m.x.size()); ++i)
+      if (std::abs(m.x[i].x() - 0.5) < 1e-12) mid.push_back(i);
+    sim->set_group("mid", mid);
+    RawParams sp = P({{"mesh", std::string("s")},
+                      {"thickness", 0.01},
+                      {"boundary", std::string("simply_supported")},
+                      {"load", std::vector<double>{0, 0, 2e-5}}});
+    if (half) sp["symmetry_edges"] = std::vector<std::string>{"mid"};
+    sim->add_shell("koiter", sp);
+    sim->set_integrator("fire", P({}));
+    sim->minimize(1e-13, 100, "newton");
+    EXPECT_LT(sim->max_force(), 1e-13);
+    const auto& surf = sim->topology().surfaces[0];
+    int centre = -1;
+    for (int i = 0; i < surf.mesh->n_real_nodes; ++i)
+      if ((surf.mesh->mesh.x[i] - Vec3(0.5, 0.5, 0)).norm() < 1e-9) centre = i;
+    double w = 0;
+    for (auto& r : shell::limit_mask(*surf.mesh, centre))
+      w += r.N * sim->nodes().x[surf.first_node + r.node].z();
+    return w;
+  };
+  const double whole = centre_deflection(1.0, 8, false), half = centre_deflection(0.5, 4, true);
+  std::printf("supported plate n=8: centre deflection %.6e whole, %.6e half with symmetry\n", whole,
+              half);
+  EXPECT_GT(whole, 0);
+  EXPECT_NEAR(half / whole, 1.0, 0.01);
+}
+
 TEST(KoiterShell, EdgeRulesRefuseUnknownOrEmptyGroups) {
   auto message = [](RawParams sp) {
     try {

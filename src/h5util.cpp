@@ -227,6 +227,9 @@ void write_frame(hsize_t t, const Handle& ds, hid_t memtype, const void* v) {
 TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool integer)
     : ncomp_(ncomp), integer_(integer) {
   group_ = create_group(parent, name);
+  // value [frames][rows][components], or [frames][rows] for one component (H5MD 1.1: a
+  // scalar per particle has no component axis)
+  const int vrank = ncomp_ == 1 ? 2 : 3;
   auto make = [&](const char* nm, hid_t type, int rank, const hsize_t* chunk) {
     std::vector<hsize_t> zero(static_cast<size_t>(rank), 0),
         maxd(static_cast<size_t>(rank), H5S_UNLIMITED);
@@ -234,7 +237,7 @@ TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool in
     Handle space = checked(H5Screate_simple(rank, zero.data(), maxd.data()), H5Sclose, "space");
     Handle plist = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "plist");
     H5Pset_chunk(plist, rank, chunk);
-    if (rank == 3 && integer) {
+    if (rank > 1 && integer) {
       const long long fill = -1;
       H5Pset_fill_value(plist, H5T_NATIVE_LLONG, &fill);
     }
@@ -245,7 +248,7 @@ TimeSeries::TimeSeries(hid_t parent, const std::string& name, int ncomp, bool in
   step_ = make("step", H5T_STD_I64LE, 1, c1);
   time_ = make("time", H5T_IEEE_F64LE, 1, c1);
   const hsize_t c3[3] = {1, 1024, static_cast<hsize_t>(ncomp_)};
-  value_ = make("value", integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, 3, c3);
+  value_ = make("value", integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, vrank, c3);
 }
 
 long TimeSeries::append(long step, double time, const double* data, size_t n) {
@@ -254,12 +257,13 @@ long TimeSeries::append(long step, double time, const double* data, size_t n) {
   long long s = step;
   write_frame(t, step_, H5T_NATIVE_LLONG, &s);
   write_frame(t, time_, H5T_NATIVE_DOUBLE, &time);
+  const int vrank = ncomp_ == 1 ? 2 : 3;  // as created
   hsize_t size[3] = {t + 1, nmax_, static_cast<hsize_t>(ncomp_)};
   check(H5Dset_extent(value_, size), "extend value");
   Handle fs = checked(H5Dget_space(value_), H5Sclose, "space");
   hsize_t start[3] = {t, 0, 0}, count[3] = {1, n, static_cast<hsize_t>(ncomp_)};
   H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, nullptr, count, nullptr);
-  Handle ms = checked(H5Screate_simple(3, count, nullptr), H5Sclose, "space");
+  Handle ms = checked(H5Screate_simple(vrank, count, nullptr), H5Sclose, "space");
   if (integer_) {
     std::vector<long long> buf(n * static_cast<size_t>(ncomp_));
     for (size_t i = 0; i < buf.size(); ++i) buf[i] = static_cast<long long>(data[i]);
@@ -297,6 +301,15 @@ void ScalarSeries::append(long step, double time, double value) {
 std::string xdmf_slab(const std::string& file, const std::string& path, long t, size_t n, int nc,
                       size_t cap, long frames, const char* type) {
   char head[512];
+  if (nc == 1) {  // a [frames][rows] dataset (TimeSeries of one component)
+    std::snprintf(
+        head, sizeof head,
+        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu\" Type=\"HyperSlab\">\n"
+        "  <DataItem Dimensions=\"3 2\" Format=\"XML\">%ld 0 1 1 1 %zu</DataItem>\n"
+        "  <DataItem Dimensions=\"%ld %zu\" NumberType=\"%s\" Precision=\"8\" Format=\"HDF\">",
+        n, t, n, frames, cap, type);
+    return std::string(head) + file + ":" + path + "</DataItem>\n</DataItem>\n";
+  }
   std::snprintf(
       head, sizeof head,
       "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu %d\" Type=\"HyperSlab\">\n"

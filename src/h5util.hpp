@@ -70,7 +70,8 @@ void attr_reference(hid_t obj, const std::string& name, hid_t file, const std::s
 std::string read_attr_string(hid_t obj, const std::string& name);
 
 // A time series following H5MD: <group>/step, <group>/time, <group>/value with
-// value extendable in frames and in the particle dimension.
+// value extendable in frames and in the particle dimension: [frames][rows][ncomp], or
+// [frames][rows] for ncomp = 1 (H5MD 1.1: a scalar per particle has no component axis).
 class TimeSeries {
  public:
   // An integer series has the fill value -1: the rows past a frame's own count (and of
@@ -102,7 +103,8 @@ class ScalarSeries {
 };
 
 // XDMF DataItem selecting frame t (n rows of nc values) of an extendable
-// <frames> x <cap> x nc HDF5 dataset `path` in file `file` (for ParaView).
+// <frames> x <cap> x nc HDF5 dataset `path` in file `file` (<frames> x <cap> for nc = 1, as
+// TimeSeries writes it), for ParaView.
 std::string xdmf_slab(const std::string& file, const std::string& path, long t, size_t n, int nc,
                       size_t cap, long frames, const char* type);
 

@@ -1,8 +1,9 @@
 """Read what slender writes: H5MD trajectories, shell surfaces and checkpoints (h5py only).
 
 Trajectories (dump "h5md", styles/dump/h5md.cpp): /particles/all/<field>/{step,time,value}
-with value [frames, max nodes, components], and /connectivity/edges/value [frames, max
-edges, 2], each chain's edges in chain order. Rows past a frame's own count are padding
+with value [frames, max nodes, components] ([frames, max nodes] for a one-component field
+such as mass or id, as H5MD 1.1 has it; older files keep a last axis of 1),
+and /connectivity/edges/value [frames, max edges, 2], each chain's edges in chain order. Rows past a frame's own count are padding
 (-1, the datasets' fill value; files written before 0.2 pad with an edge from a node to
 itself). /particles/all/id holds the node index (-1 past the frame's count) and
 /observables/nodes the count per frame. Nodes are stored in the order they were created, so a
@@ -12,7 +13,7 @@ not appear.
 
 Shell surfaces (dump "shell", styles/shell/dump_shell.cpp): /mesh/triangles [T, 3] and
 /frames/{position,<field>}/{step,time,value}, position [frames, nodes, 3] (the limit
-surface at the control nodes), per-face fields [frames, T, 1]; a '/' in a field's name
+surface at the control nodes), per-face fields [frames, T] ([frames, T, 1] in older files); a '/' in a field's name
 is stored as '|'.
 
 Checkpoints (dump "checkpoint", src/checkpoint_h5.cpp): /state/scalars (step, time, dt,
@@ -127,6 +128,8 @@ class Trajectory(_Series):
         if field not in self.fields:
             raise KeyError(f"{self.path}: no field {field!r} (has {', '.join(self.fields)})")
         values = np.asarray(self.file[f"particles/all/{field}/value"][self._index(i)])
+        if values.ndim == 1:  # one component: a row of one value each, as older files
+            values = values[:, None]
         return [values[nodes] for nodes in self.chains(i)[0]]
 
     def closed(self, i):
@@ -145,7 +148,7 @@ class Trajectory(_Series):
         if len(k) == 0:
             return []
         points = np.asarray(self.file["xdmf/wall_points/value"][k[0]])
-        cells = np.asarray(self.file["xdmf/wall_polylines/value"][k[0]])[:, 0]
+        cells = np.asarray(self.file["xdmf/wall_polylines/value"][k[0]]).reshape(-1)
         lines, at = [], 0
         while at + 1 < len(cells) and cells[at] == 2:  # XDMF polyline: type, count, indices
             n = int(cells[at + 1])

@@ -106,11 +106,13 @@ def test_a_growing_trajectory_follows_h5md(request, fixture):
         assert np.ndim(dim) == 0 and int(dim) == t.dimension
         ids = f["particles/all/id/value"]
         assert ids.dtype.kind == "i" and ids.fillvalue == -1
+        # H5MD 1.1: a scalar per particle is [frames][particles], no component axis
+        assert ids.ndim == 2 and f["particles/all/position/value"].ndim == 3
         counts = np.asarray(f["observables/nodes/value"])
         np.testing.assert_array_equal(f["observables/nodes/step"], f["particles/all/position/step"])
         assert counts[0] < counts[-1] == res.result["nodes"], "the wire did not grow: nothing tested"
         for k, n in enumerate(counts):
-            row = np.asarray(ids[k])[:, 0]
+            row = np.asarray(ids[k])
             np.testing.assert_array_equal(row[:n], np.arange(n))
             assert np.all(row[n:] == -1)
         edges = f["connectivity/edges/value"]

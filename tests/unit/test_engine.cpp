@@ -399,7 +399,7 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   // one open chain of 7 nodes is one XDMF polyline: cell type 2, 7 nodes, the nodes in order
   std::vector<hsize_t> ldims;
   auto lines = h5::read_doubles(f, "xdmf/polylines/value", &ldims);
-  ASSERT_EQ(ldims.size(), 3u);
+  ASSERT_EQ(ldims.size(), 2u);  // one value per row: [frames][values], no component axis
   EXPECT_EQ(ldims[1], 9u);
   std::vector<double> first(lines.begin(), lines.begin() + 9);
   EXPECT_EQ(first, (std::vector<double>{2, 7, 0, 1, 2, 3, 4, 5, 6}));
@@ -409,6 +409,10 @@ TEST(H5mdDump, WritesFiniteFramesAndAnXdmfSideFile) {
   EXPECT_NE(ss.str().find("TopologyType=\"Mixed\" NumberOfElements=\"1\""), std::string::npos);
   EXPECT_NE(ss.str().find("test_dump.h5:/xdmf/polylines/value"), std::string::npos);
   EXPECT_NE(ss.str().find("test_dump.h5:/particles/all/velocity/value"), std::string::npos);
+  // H5MD 1.1: the node index, one value per node, is [frames][nodes]
+  std::vector<hsize_t> idims;
+  h5::read_doubles(f, "particles/all/id/value", &idims);
+  EXPECT_EQ(idims.size(), 2u);
   std::remove(file.c_str());
   std::remove((file + ".xdmf").c_str());
 }

@@ -1,9 +1,13 @@
 #!/usr/bin/env python3
 """Maximum packing fraction against a/R for the 3D packing decks (docs/models.md §5.4):
 runs examples/pack3d/<setup>.lua for each sphere radius R and seed until the stop
-force, and writes <out>.csv (one row per run, appended at once, so an interrupted
-sweep resumes where it stopped) and <out>.png (phi_max against a/R with a power-law
-fit phi_max = A (a/R)^p per setup, fitted on the seed means).
+force, and writes <out>.csv (one row per run), <out>.png (phi_max against a/R with a
+power-law fit phi_max = A (a/R)^p per setup, fitted on the seed means) and <out>_fit.csv.
+
+A command-line entry point over workflows/pack3d.smk: the sweep is a Snakemake run (one
+job per run, resumable from checkpoints, only missing runs run; workflows/README.md),
+locally on --cores or on Slurm with --profile slurm; its results stay under --results and
+the table and picture are copied to --out.
 
   /usr/bin/python3 scripts/pack3d_sweep.py --setups low_torsion --R 4 5 10 13 20 --seeds 1 2 3
 
@@ -14,35 +18,20 @@ The R = 20 runs recorded in docs/results/long_runs/ are added the same way:
 --add-long-run docs/results/long_runs/lt20 docs/results/long_runs/ht20.
 """
 import argparse
-import concurrent.futures as cf
 import csv
 import math
 import os
+import shlex
+import shutil
+import subprocess
 import sys
-import threading
 
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from slender.run import run_deck  # noqa: E402
 FIELDS = ["setup", "R", "a_over_R", "seed", "phi", "stopped", "force_R2_over_YI", "bend_R_over_YI",
           "rg_over_R", "stretch_over_bend", "contacts", "nodes", "steps", "wall_s", "node_steps_per_s",
           "status", "error"]
-
-
-def run_one(a, setup, R, seed):
-    res = run_deck(os.path.join(a.examples, "pack3d", setup + ".lua"),
-                   [f"R={R}", f"seed={seed}", "output=false"] + a.var, timeout=a.timeout, binary=a.slender)
-    row = {"setup": setup, "R": R, "a_over_R": 1.0 / R, "seed": seed}
-    if res.ok:
-        last = res.results_text[-1]  # verbatim, as the deck printed it
-        row.update({k: last[k] for k in FIELDS if k in last})
-        row["status"] = "ok"
-    else:
-        row["status"] = "failed"
-        row["error"] = (res.error or "?")[:200].replace(",", ";")
-    return row
 
 
 def long_run_row(store):
@@ -123,12 +112,17 @@ def draw(rows, out):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
-    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
     ap.add_argument("--setups", nargs="+", default=["low_torsion"])
     ap.add_argument("--R", type=float, nargs="+", default=[4, 5, 10, 13, 20])
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
-    ap.add_argument("--jobs", type=int, default=max(1, os.cpu_count() or 2))
-    ap.add_argument("--timeout", type=float, default=None)
+    ap.add_argument("--cores", type=int, default=max(1, os.cpu_count() or 2))
+    ap.add_argument("--timeout", type=float, default=None, help="seconds per run (a cut run continues next time)")
+    ap.add_argument("--checkpoint-every", type=int, default=1000000, help="steps between a run's checkpoints")
+    ap.add_argument("--profile", default="local", choices=["local", "slurm"])
+    ap.add_argument("--results", default=None,
+                    help="the workflow's results folder (default results/pack3d in the repository); "
+                         "runs already there are not run again")
+    ap.add_argument("--dry-run", action="store_true", help="print what would run and exit")
     ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                     help="extra -v override for every run (repeatable)")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "pack3d", "phi_max"))
@@ -151,30 +145,32 @@ def main():
                   f"{n['wall_s']:.0f} s, {n['node_steps_per_s']:.3g} node-steps/s")
         for setup, A, p in draw(load(path), a.out):
             print(f"{setup}: phi_max = {A:.4g} (a/R)^{p:.3f}")
-        return
-    done = {(r["setup"], float(r["R"]), int(r["seed"])) for r in rows if r["status"] == "ok"}
-    todo = [(s, R, k) for s in a.setups for R in a.R for k in a.seeds if (s, R, k) not in done]
-    print(f"{len(done)} runs done, {len(todo)} to go -> {path}", flush=True)
-    if not os.path.exists(path):
-        with open(path, "w", newline="") as fh:
-            csv.DictWriter(fh, FIELDS).writeheader()
-    lock = threading.Lock()
-
-    def job(t):
-        row = run_one(a, *t)
-        with lock:
-            with open(path, "a", newline="") as fh:
-                csv.DictWriter(fh, FIELDS).writerow(row)
-            print(f"{t[0]} R {t[1]:g} seed {t[2]}: {row['status']} phi {row.get('phi', '')} "
-                  f"wall {row.get('wall_s', '')} s", flush=True)
-        return row
-
-    with cf.ThreadPoolExecutor(a.jobs) as ex:
-        list(ex.map(job, todo))
-    for setup, A, p in draw(load(path), a.out):
+        return 0
+    results = os.path.abspath(a.results or os.path.join(ROOT, "results", "pack3d"))
+    lists = lambda xs: "[" + ", ".join(f"{x:g}" if isinstance(x, float) else str(x) for x in xs) + "]"
+    cfg = [f"slender={os.path.abspath(a.slender)}", f"results={results}", f"setups={lists(a.setups)}",
+           f"R={lists(a.R)}", f"seeds={lists(a.seeds)}", f"checkpoint_every={a.checkpoint_every}"]
+    if a.timeout:
+        cfg.append(f"timeout={a.timeout:g}")
+    if a.var:
+        cfg.append("vars={" + ", ".join(f"{k}: {v}" for k, v in (x.split("=", 1) for x in a.var)) + "}")
+    cmd = ["snakemake", "-s", os.path.join(ROOT, "workflows", "pack3d.smk"),
+           "--profile", os.path.join(ROOT, "workflows", "profiles", a.profile),
+           "--configfile", os.path.join(ROOT, "workflows", "config", "pack3d.yaml"),
+           "--directory", ROOT, "--cores", str(a.cores), "--config", *cfg]
+    if a.dry_run:
+        cmd += ["--dry-run", "--quiet"]
+    print(" ".join(shlex.quote(c) for c in cmd), flush=True)
+    done = subprocess.run(cmd).returncode
+    if a.dry_run or done != 0:
+        return done
+    for suffix in (".csv", ".png", "_fit.csv"):
+        shutil.copyfile(os.path.join(results, "phi_max" + suffix), a.out + suffix)
+    for setup, A, p in draw(load(a.out + ".csv"), a.out):
         print(f"{setup}: phi_max = {A:.4g} (a/R)^{p:.3f}")
-    print("wrote", a.out + ".png")
+    print("wrote", a.out + ".csv", a.out + ".png")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -2,7 +2,6 @@
 """Checks the fits of scripts/crumple_stats.py on synthetic data with known answers,
 and the morphology classes of scripts/phase_diagram.py."""
 import csv
-import json
 import os
 import subprocess
 import sys
@@ -78,23 +77,8 @@ def main():
     # the spiral model's core radius: R_c(0) ~ R, R_c(1) = d (docs/models.md §2.8)
     rc = lambda p: 0.5 * (1 + np.sqrt(1 + 4 * 50.0 ** 2 * (1 - p)))
     assert abs(rc(1.0) - 1.0) < 1e-12 and abs(rc(0.0) - 50.0) < 1
-    sweep_resumes_interrupted_runs()
     causes_table_means_and_errors()
     print("crumple scripts: ok")
-
-
-FAKE_SLENDER = """#!{python}
-# stands in for slender: a first part writes a checkpoint and hangs (killed by the
-# sweep's timeout); a part given -v restart=... finishes 100 steps after it
-import os, sys, time
-restart = [v.split("=", 1)[1] for v in sys.argv if v.startswith("restart=")]
-step = int(open(restart[0]).read()) if restart else 0
-if not restart:
-    open("classic_restart.h5", "w").write(str(step + 700))
-    time.sleep(30)
-print(f"RESULT phi=0.3 jammed=1 loops=4 winding=0.2 ab_ratio=0.3 contacts=9 "
-      f"steps={{step + 100}} wall_s=1.5 ended=jam")
-"""
 
 
 def causes_table_means_and_errors():
@@ -114,43 +98,6 @@ def causes_table_means_and_errors():
     # mean 0.4, standard error sqrt(0.02 / 2) = 0.1; the failed seed is named
     assert rows[0].startswith("| drag = 0.1 | 2 (1 failed) | 0.400 ± 0.100 |"), rows[0]
     assert rows[1].startswith("| drag = 1 | 1 | 2.000 |"), rows[1]
-
-
-def sweep_resumes_interrupted_runs():
-    """An interrupted run of the phase-diagram sweep continues from its checkpoint:
-    the restarted part is given the checkpoint, its steps continue, its wall time adds
-    the first part's time up to the checkpoint, and the run directory goes at the end."""
-    with tempfile.TemporaryDirectory() as tmp:
-        fake = os.path.join(tmp, "slender")
-        with open(fake, "w") as fh:
-            fh.write(FAKE_SLENDER.format(python=sys.executable))
-        os.chmod(fake, 0o755)
-        common = [sys.executable, os.path.join(ROOT, "scripts", "phase_diagram.py"), "--slender", fake,
-                  "--f", "8", "--yields", "0.02", "--mus", "0.2", "--seeds", "1", "--jobs", "1",
-                  "--work", os.path.join(tmp, "work"), "--no-retry-dt", "--out", os.path.join(tmp, "pd")]
-        out = subprocess.run(common + ["--timeout", "1"], capture_output=True, text=True)
-        assert out.returncode == 0, out.stderr
-        first = read_csv(os.path.join(tmp, "pd.csv"))
-        assert first[0]["status"] == "failed" and "timeout" in first[0]["error"], first
-        assert len(os.listdir(os.path.join(tmp, "work"))) == 1  # kept for the next part
-        # --settle before the folder moves to another machine: the first part's time up
-        # to its checkpoint is kept, and the checkpoint's new modification time after a
-        # fresh clone (here: a day later) adds nothing
-        run_dir = os.path.join(tmp, "work", os.listdir(os.path.join(tmp, "work"))[0])
-        out = subprocess.run(common + ["--settle"], capture_output=True, text=True)
-        assert out.returncode == 0 and "1 part(s)" in out.stdout, (out.stdout, out.stderr)
-        with open(os.path.join(run_dir, "parts.json")) as fh:
-            state = json.load(fh)
-        assert "start" not in state and 0.0 < state["wall"] < 1.0, state
-        later = os.path.getmtime(os.path.join(run_dir, "classic_restart.h5")) + 86400
-        os.utime(os.path.join(run_dir, "classic_restart.h5"), (later, later))
-        out = subprocess.run(common + ["--retry-failed"], capture_output=True, text=True)
-        assert out.returncode == 0, out.stderr
-        rows = read_csv(os.path.join(tmp, "pd.csv"))
-        assert len(rows) == 1 and rows[0]["status"] == "ok", rows
-        assert rows[0]["steps"] == "800", rows  # continued from the checkpoint at 700
-        assert 1.5 < float(rows[0]["wall_s"]) < 2.5, rows  # + the first part up to its checkpoint
-        assert os.listdir(os.path.join(tmp, "work")) == []
 
 
 if __name__ == "__main__":

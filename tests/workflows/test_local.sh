@@ -70,6 +70,25 @@ grep -q 'wildcards: y=0, mu=0.4, seed=1' "$tmp/phase_diagram.log" || fail "the r
 [[ -f "$pd/y0_mu0.4_seed1.json" && "$(stat -c %Y.%y "$kept")" == "$stamp" ]] || fail "the kept point changed"
 echo "phase diagram: a deleted point reran alone ($((SECONDS - t0)) s)"
 
+# the script is an entry point over the same workflow: the smoke grid through it gives the
+# workflow's own table (the decks are deterministic), copied to --out
+t0=$SECONDS
+/usr/bin/python3 "$repo/scripts/phase_diagram.py" --slender "$bin" --f 10 --yields 0 0.04 --mus 0.4 --seeds 1 \
+  --var max_phi=0.3 --checkpoint-every 0 --cores 2 --results "$tmp/pd_script" --out "$tmp/pd_out/pd" \
+  > "$tmp/pd_script.log" 2>&1 || { tail -n 30 "$tmp/pd_script.log"; fail "scripts/phase_diagram.py"; }
+/usr/bin/python3 - "$tmp" << 'PY' || fail "scripts/phase_diagram.py's table"
+import csv, os, sys
+tmp = sys.argv[1]
+key = lambda r: {k: r[k] for k in ("yield", "mu", "seed", "class", "phi", "steps", "loops", "status")}
+script = [key(r) for r in csv.DictReader(open(os.path.join(tmp, "pd_out", "pd.csv")))]
+flow = [key(r) for r in csv.DictReader(open(os.path.join(tmp, "phase_diagram", "results", "phase_diagram_smoke",
+                                                          "phase_diagram_f10.csv")))]
+assert len(script) == 2 and script == flow, (script, flow)
+for png in ("pd.png", "pd_phi.png", "pd_thumbnails.png"):
+    assert os.path.getsize(os.path.join(tmp, "pd_out", png)) > 1000, png
+PY
+echo "phase diagram script: the workflow's table through scripts/phase_diagram.py ($((SECONDS - t0)) s)"
+
 # resume: a 0.5 s timeout cuts both pack3d runs (about 2 s each); the next call continues them
 t0=$SECONDS
 if study pack3d --config slender="$bin" timeout=0.5; then fail "pack3d finished within its 0.5 s timeout"; fi
@@ -98,6 +117,23 @@ assert os.path.getsize(os.path.join(results, "phi_max.png")) > 1000
 assert os.path.exists(os.path.join(results, "phi_max_fit.csv"))
 PY
 echo "pack3d: 2 runs cut by a timeout, continued from their checkpoints to the uninterrupted result ($((SECONDS - t0)) s)"
+
+# scripts/pack3d_sweep.py drives the same workflow: seed 1 through it is the workflow's row
+t0=$SECONDS
+/usr/bin/python3 "$repo/scripts/pack3d_sweep.py" --slender "$bin" --R 4 --seeds 1 --cores 2 \
+  --results "$tmp/p3_script" --out "$tmp/p3_out/phi" > "$tmp/p3_script.log" 2>&1 ||
+  { tail -n 30 "$tmp/p3_script.log"; fail "scripts/pack3d_sweep.py"; }
+/usr/bin/python3 - "$tmp" << 'PY' || fail "scripts/pack3d_sweep.py's table"
+import csv, os, sys
+tmp = sys.argv[1]
+key = lambda r: {k: r[k] for k in ("setup", "R", "seed", "phi", "steps", "contacts", "status")}
+script = [key(r) for r in csv.DictReader(open(os.path.join(tmp, "p3_out", "phi.csv")))]
+flow = [key(r) for r in csv.DictReader(open(os.path.join(tmp, "pack3d", "results", "pack3d_smoke", "phi_max.csv")))
+        if r["seed"] == "1"]
+assert len(script) == 1 and script == flow, (script, flow)
+assert os.path.getsize(os.path.join(tmp, "p3_out", "phi.png")) > 1000
+PY
+echo "pack3d script: the workflow's row through scripts/pack3d_sweep.py ($((SECONDS - t0)) s)"
 
 t0=$SECONDS
 study examples || { tail -n 30 "$tmp/examples.log"; fail "examples"; }

@@ -2,6 +2,8 @@
 """Does the answer depend on the time step? Runs one injection deck (2D crumpling or 3D
 packing) to its jam over a ladder of (integrator, dt) rungs with several seeds, and writes
 the science observables next to the wall time each rung cost (work-precision style):
+a command-line entry point over workflows/dt_ladder.smk (one job per run and seed,
+resumable, only missing runs run; --profile slurm for a cluster).
 
   - 2D: phi_jam, the injection force at the stop, A/B, loops, contacts, fractal dimension;
   - 3D: phi_max, the force, E_b R / YI, contacts.
@@ -13,13 +15,14 @@ errors, times 2). Writes <out>.csv (one row per run), <out>.md (a row per rung) 
 
   /usr/bin/python3 scripts/dt_ladder.py --deck crumple2d/classic --var f=25 \
       --rung gear:0.000316 --rung verlet:auto --seeds 1 2 3 4 --out docs/crumple2d/dt_ladder_f25
-      [--reuse docs/crumple2d/dt_ladder_f25.csv]   # keep the runs it has, add the rest
 """
 import argparse
-import concurrent.futures as cf
 import csv
 import math
 import os
+import shlex
+import shutil
+import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -63,55 +66,59 @@ def stats(values):
     return mean, math.sqrt(var / len(v))
 
 
+def rung_name(rung):
+    """A rung as a file name (integrator:dt:var=value -> integrator_dt_var-value)."""
+    return rung.replace(":", "_").replace("=", "-").replace("/", "|")
+
+
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--deck", required=True, help="crumple2d/classic, pack3d/low_torsion, ...")
     ap.add_argument("--var", action="append", default=[], help="a deck variable, e.g. f=25")
     ap.add_argument("--rung", action="append", required=True,
                     help="integrator:dt[:var=value...] (dt a number or auto), e.g. "
                          "verlet:auto:adaptive=false; the first is the reference")
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
-    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
-    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"),
-                    help="the example decks (a copy keeps a long ladder on one version)")
-    ap.add_argument("--reuse", help="a CSV of an earlier ladder: its finished runs are not redone")
+    ap.add_argument("--profile", default="local", choices=["local", "slurm"])
+    ap.add_argument("--results", default=None,
+                    help="the workflow's results folder (default results/dt_ladder/<out's name>); "
+                         "runs already there are not run again")
+    ap.add_argument("--dry-run", action="store_true", help="print what would run and exit")
     ap.add_argument("--out", required=True, help="output path without extension")
     a = ap.parse_args()
+    results = os.path.abspath(a.results or os.path.join(ROOT, "results", "dt_ladder", os.path.basename(a.out)))
+    quote = lambda text: "'" + text.replace("'", "''") + "'"  # a YAML string
+    cfg = [f"slender={os.path.abspath(a.slender)}", f"results={results}", f"deck={a.deck}",
+           "rungs=[" + ", ".join(quote(r) for r in a.rung) + "]",
+           "seeds=[" + ", ".join(str(x) for x in a.seeds) + "]",
+           "vars={" + ", ".join(f"{k}: {quote(v)}" for k, v in (x.split("=", 1) for x in a.var)) + "}"]
+    cmd = ["snakemake", "-s", os.path.join(ROOT, "workflows", "dt_ladder.smk"),
+           "--profile", os.path.join(ROOT, "workflows", "profiles", a.profile),
+           "--configfile", os.path.join(ROOT, "workflows", "config", "dt_ladder.yaml"),
+           "--directory", ROOT, "--cores", str(a.cores), "--config", *cfg]
+    if a.dry_run:
+        cmd += ["--dry-run", "--quiet"]
+    print(" ".join(shlex.quote(c) for c in cmd), flush=True)
+    done = subprocess.run(cmd).returncode
+    if a.dry_run or done != 0:
+        return done
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
+    for suffix in (".csv", ".md", ".png"):
+        if os.path.exists(os.path.join(results, "dt_ladder" + suffix)):
+            shutil.copyfile(os.path.join(results, "dt_ladder" + suffix), a.out + suffix)
+    print("wrote", a.out + ".csv", a.out + ".md", a.out + ".png")
+    return 0
 
-    family = a.deck.split("/")[0]
-    obs = OBSERVABLES[family]
-    rungs = a.rung
-    rows = []
-    if a.reuse and os.path.exists(a.reuse):
-        with open(a.reuse) as fh:
-            for r in csv.DictReader(fh):
-                r["rung"] = r.get("rung") or f"{r['integrator']}:{r['dt']}"
-                if r["status"] != "ok" or r["rung"] not in rungs:
-                    continue
-                for k, v in r.items():
-                    if k in ("rung", "integrator", "dt", "status", "error"):
-                        continue
-                    try:
-                        r[k] = float(v)
-                    except (TypeError, ValueError):
-                        pass
-                r["seed"] = int(r["seed"])
-                if r["seed"] in a.seeds:
-                    rows.append(r)
-    done = {(r["rung"], r["seed"]) for r in rows}
-    jobs = [(rung, seed) for rung in rungs for seed in a.seeds if (rung, seed) not in done]
-    with cf.ThreadPoolExecutor(a.jobs) as ex:
-        futs = {ex.submit(run, a.slender, a.examples, a.deck, a.var, r, s): (r, s) for r, s in jobs}
-        for fut in cf.as_completed(futs):
-            row = fut.result()
-            rows.append(row)
-            print(f"{row['rung']:<28} seed={row['seed']} {row['status']} "
-                  f"phi={row.get('phi', math.nan):.4f} wall={row.get('wall_s', math.nan):.1f}s",
-                  flush=True)
+
+def write_outputs(rows, rungs, seeds, deck, variables, out):
+    """<out>.csv (a row per run, in rung and seed order), <out>.md (a row per rung: seed
+    means against the first rung) and <out>.png (each observable against wall time)."""
+    obs = OBSERVABLES[deck.split("/")[0]]
     order = {r: k for k, r in enumerate(rungs)}
-    rows.sort(key=lambda r: (order[r["rung"]], r["seed"]))
-
+    rows = sorted(rows, key=lambda r: (order[r["rung"]], r["seed"]))
+    a = argparse.Namespace(out=out, deck=deck, var=variables, seeds=seeds)
     keys = ["rung", "integrator", "dt", "seed", "status", "steps", "wall_s", "nodes"] + obs + ["jammed", "error"]
     with open(a.out + ".csv", "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
@@ -132,7 +139,7 @@ def main():
     ref = summary[0]
     with open(a.out + ".md", "w") as fh:
         fh.write(f"# Time-step ladder: {a.deck} {' '.join(a.var)}, seeds {a.seeds}\n\n")
-        fh.write("Written by `scripts/dt_ladder.py`. Seed mean ± standard error per rung; the first "
+        fh.write("Written by `workflows/dt_ladder.smk` (`scripts/dt_ladder.py`). Seed mean ± standard error per rung; the first "
                  "rung is the reference. A value marked * differs from the reference by more than "
                  "twice the larger standard error.\n\n")
         fh.write("| rung | runs (failed) | mean steps | mean wall s | " + " | ".join(obs) + " |\n")
@@ -175,5 +182,7 @@ def main():
     fig.savefig(a.out + ".png", dpi=110)
 
 
+
+
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -262,4 +262,28 @@ assert all(0 < float(r["R_C"]) < 1 and int(r["triangles"]) > 0 for r in rows.val
 assert os.path.getsize(os.path.join(results, "core_radius.png")) > 1000
 PY
 echo "shell core radius: 2 thicknesses, the deck's own numbers, table and picture ($((SECONDS - t0)) s)"
+
+# the time-step ladder: a record per (rung, seed), the script's table; the script drives the
+# same workflow and gets the same rows
+t0=$SECONDS
+study dt_ladder || { tail -n 30 "$tmp/dt_ladder.log"; fail "dt_ladder"; }
+/usr/bin/python3 "$repo/scripts/dt_ladder.py" --slender "$bin" --deck crumple2d/classic --var f=10 \
+  --var max_phi=0.3 --rung verlet:auto --rung verlet:auto:safety=0.25 --seeds 1 --cores 2 \
+  --results "$tmp/dt_script" --out "$tmp/dt_out/ladder" > "$tmp/dt_script.log" 2>&1 ||
+  { tail -n 30 "$tmp/dt_script.log"; fail "scripts/dt_ladder.py"; }
+check dt_ladder << PY
+import csv, os, sys
+results = sys.argv[1]
+key = lambda r: {k: r[k] for k in ("rung", "seed", "status", "phi", "steps", "loops", "contacts")}
+flow = [key(r) for r in csv.DictReader(open(os.path.join(results, "dt_ladder.csv")))]
+assert [r["rung"] for r in flow] == ["verlet:auto", "verlet:auto:safety=0.25"], flow
+assert all(r["status"] == "ok" and 0.29 < float(r["phi"]) < 0.35 for r in flow), flow
+# a quarter of the safety factor takes more steps to the same phi
+assert float(flow[1]["steps"]) > 1.5 * float(flow[0]["steps"]), flow
+script = [key(r) for r in csv.DictReader(open("$tmp/dt_out/ladder.csv"))]
+assert script == flow, (script, flow)
+assert "| verlet:auto | 1 (0) |" in open(os.path.join(results, "dt_ladder.md")).read()
+assert os.path.getsize("$tmp/dt_out/ladder.png") > 1000
+PY
+echo "dt ladder: 2 rungs, the script's table through the workflow ($((SECONDS - t0)) s)"
 echo "workflow local: ok"

@@ -20,14 +20,12 @@ import argparse
 import csv
 import math
 import os
-import shlex
-import shutil
-import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 import slender.run as slender_run  # noqa: E402
+import workflow_cli  # noqa: E402
 
 OBSERVABLES = {
     "crumple2d": ["phi", "force", "ab_ratio", "loops", "contacts", "fractal_dimension"],
@@ -79,35 +77,21 @@ def main():
                     help="integrator:dt[:var=value...] (dt a number or auto), e.g. "
                          "verlet:auto:adaptive=false; the first is the reference")
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
-    ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
-    ap.add_argument("--profile", default="local", choices=["local", "slurm"])
     ap.add_argument("--results", default=None,
                     help="the workflow's results folder (default results/dt_ladder/<out's name>); "
                          "runs already there are not run again")
-    ap.add_argument("--dry-run", action="store_true", help="print what would run and exit")
+    workflow_cli.add_options(ap, 2)
     ap.add_argument("--out", required=True, help="output path without extension")
     a = ap.parse_args()
     results = os.path.abspath(a.results or os.path.join(ROOT, "results", "dt_ladder", os.path.basename(a.out)))
-    quote = lambda text: "'" + text.replace("'", "''") + "'"  # a YAML string
     cfg = [f"slender={os.path.abspath(a.slender)}", f"results={results}", f"deck={a.deck}",
-           "rungs=[" + ", ".join(quote(r) for r in a.rung) + "]",
-           "seeds=[" + ", ".join(str(x) for x in a.seeds) + "]",
-           "vars={" + ", ".join(f"{k}: {quote(v)}" for k, v in (x.split("=", 1) for x in a.var)) + "}"]
-    cmd = ["snakemake", "-s", os.path.join(ROOT, "workflows", "dt_ladder.smk"),
-           "--profile", os.path.join(ROOT, "workflows", "profiles", a.profile),
-           "--configfile", os.path.join(ROOT, "workflows", "config", "dt_ladder.yaml"),
-           "--directory", ROOT, "--cores", str(a.cores), "--config", *cfg]
-    if a.dry_run:
-        cmd += ["--dry-run", "--quiet"]
-    print(" ".join(shlex.quote(c) for c in cmd), flush=True)
-    done = subprocess.run(cmd).returncode
+           f"rungs={workflow_cli.yaml_list(a.rung)}", f"seeds={workflow_cli.yaml_list(a.seeds)}",
+           f"vars={workflow_cli.yaml_vars(a.var)}"]
+    done = workflow_cli.run("dt_ladder", cfg, a)
     if a.dry_run or done != 0:
         return done
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    for suffix in (".csv", ".md", ".png"):
-        if os.path.exists(os.path.join(results, "dt_ladder" + suffix)):
-            shutil.copyfile(os.path.join(results, "dt_ladder" + suffix), a.out + suffix)
+    workflow_cli.copy_outputs(os.path.join(results, "dt_ladder"), a.out, (".csv", ".md", ".png"))
     print("wrote", a.out + ".csv", a.out + ".md", a.out + ".png")
     return 0
 

@@ -21,12 +21,11 @@ import argparse
 import csv
 import math
 import os
-import shlex
-import shutil
-import subprocess
 import sys
 
 import numpy as np
+
+import workflow_cli
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FIELDS = ["setup", "R", "a_over_R", "seed", "phi", "stopped", "force_R2_over_YI", "bend_R_over_YI",
@@ -115,14 +114,12 @@ def main():
     ap.add_argument("--setups", nargs="+", default=["low_torsion"])
     ap.add_argument("--R", type=float, nargs="+", default=[4, 5, 10, 13, 20])
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
-    ap.add_argument("--cores", type=int, default=max(1, os.cpu_count() or 2))
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run (a cut run continues next time)")
     ap.add_argument("--checkpoint-every", type=int, default=1000000, help="steps between a run's checkpoints")
-    ap.add_argument("--profile", default="local", choices=["local", "slurm"])
     ap.add_argument("--results", default=None,
                     help="the workflow's results folder (default results/pack3d in the repository); "
                          "runs already there are not run again")
-    ap.add_argument("--dry-run", action="store_true", help="print what would run and exit")
+    workflow_cli.add_options(ap, max(1, os.cpu_count() or 2))
     ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                     help="extra -v override for every run (repeatable)")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "pack3d", "phi_max"))
@@ -147,25 +144,17 @@ def main():
             print(f"{setup}: phi_max = {A:.4g} (a/R)^{p:.3f}")
         return 0
     results = os.path.abspath(a.results or os.path.join(ROOT, "results", "pack3d"))
-    lists = lambda xs: "[" + ", ".join(f"{x:g}" if isinstance(x, float) else str(x) for x in xs) + "]"
+    lists = workflow_cli.yaml_list
     cfg = [f"slender={os.path.abspath(a.slender)}", f"results={results}", f"setups={lists(a.setups)}",
            f"R={lists(a.R)}", f"seeds={lists(a.seeds)}", f"checkpoint_every={a.checkpoint_every}"]
     if a.timeout:
         cfg.append(f"timeout={a.timeout:g}")
     if a.var:
-        cfg.append("vars={" + ", ".join(f"{k}: {v}" for k, v in (x.split("=", 1) for x in a.var)) + "}")
-    cmd = ["snakemake", "-s", os.path.join(ROOT, "workflows", "pack3d.smk"),
-           "--profile", os.path.join(ROOT, "workflows", "profiles", a.profile),
-           "--configfile", os.path.join(ROOT, "workflows", "config", "pack3d.yaml"),
-           "--directory", ROOT, "--cores", str(a.cores), "--config", *cfg]
-    if a.dry_run:
-        cmd += ["--dry-run", "--quiet"]
-    print(" ".join(shlex.quote(c) for c in cmd), flush=True)
-    done = subprocess.run(cmd).returncode
+        cfg.append("vars=" + workflow_cli.yaml_vars(a.var))
+    done = workflow_cli.run("pack3d", cfg, a)
     if a.dry_run or done != 0:
         return done
-    for suffix in (".csv", ".png", "_fit.csv"):
-        shutil.copyfile(os.path.join(results, "phi_max" + suffix), a.out + suffix)
+    workflow_cli.copy_outputs(os.path.join(results, "phi_max"), a.out, (".csv", ".png", "_fit.csv"))
     for setup, A, p in draw(load(a.out + ".csv"), a.out):
         print(f"{setup}: phi_max = {A:.4g} (a/R)^{p:.3f}")
     print("wrote", a.out + ".csv", a.out + ".png")

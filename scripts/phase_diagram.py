@@ -23,12 +23,11 @@ draw; the workflow imports them.
 import argparse
 import csv
 import os
-import shlex
-import shutil
-import subprocess
 import sys
 
 import numpy as np
+
+import workflow_cli
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FIELDS = ["f", "s", "yield", "mu", "seed", "class", "phi", "jammed", "loops", "winding", "ab_ratio",
@@ -93,7 +92,7 @@ def draw(rows, out, yields, mus, f):
 
 def config_args(a):
     """The workflow's --config of these arguments."""
-    lists = lambda xs: "[" + ", ".join(f"{x:g}" if isinstance(x, float) else str(x) for x in xs) + "]"
+    lists = workflow_cli.yaml_list
     cfg = [f"slender={os.path.abspath(a.slender)}", f"results={a.results}", f"deck={a.deck}",
            f"f={a.f:g}", f"s={a.s:g}", f"yields={lists(a.yields)}", f"mus={lists(a.mus)}",
            f"seeds={lists(a.seeds)}", f"checkpoint_every={a.checkpoint_every}"]
@@ -101,11 +100,9 @@ def config_args(a):
         cfg.append(f"timeout={a.timeout:g}")
     if not a.retry_dt:
         cfg.append("retry_unstable=null")
-    variables = dict(v.split("=", 1) for v in a.var)
-    if a.max_steps:
-        variables["max_steps"] = f"{a.max_steps:.0f}"
+    variables = a.var + ([f"max_steps={a.max_steps:.0f}"] if a.max_steps else [])
     if variables:
-        cfg.append("vars={" + ", ".join(f"{k}: {v}" for k, v in variables.items()) + "}")
+        cfg.append("vars=" + workflow_cli.yaml_vars(variables))
     return cfg
 
 
@@ -118,7 +115,6 @@ def main():
     ap.add_argument("--yields", type=float, nargs="+", default=[round(0.005 * i, 3) for i in range(13)])
     ap.add_argument("--mus", type=float, nargs="+", default=[round(0.05 * i, 2) for i in range(13)])
     ap.add_argument("--seeds", type=int, nargs="+", default=list(range(1, 10)))
-    ap.add_argument("--cores", type=int, default=max(1, (os.cpu_count() or 2)))
     ap.add_argument("--max-steps", type=float, default=None, help="-v max_steps of every run")
     ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                     help="a further -v variable of every run (repeatable), e.g. max_phi=0.3")
@@ -126,28 +122,18 @@ def main():
     ap.add_argument("--checkpoint-every", type=int, default=1000000, help="steps between a run's checkpoints")
     ap.add_argument("--no-retry-dt", dest="retry_dt", action="store_false",
                     help="do not repeat a run stopped by the instability guard with half the step")
-    ap.add_argument("--profile", default="local", choices=["local", "slurm"])
     ap.add_argument("--results", default=None,
                     help="the workflow's results folder (default results/phase_diagram_f<f> in the "
                          "repository); runs already there are not run again")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "crumple2d", "phase_diagram_f50"))
-    ap.add_argument("--dry-run", action="store_true", help="print what would run and exit")
+    workflow_cli.add_options(ap, max(1, os.cpu_count() or 2))
     a = ap.parse_args()
     a.results = os.path.abspath(a.results or os.path.join(ROOT, "results", f"phase_diagram_f{a.f:g}"))
-    cmd = ["snakemake", "-s", os.path.join(ROOT, "workflows", "phase_diagram.smk"),
-           "--profile", os.path.join(ROOT, "workflows", "profiles", a.profile),
-           "--configfile", os.path.join(ROOT, "workflows", "config", "phase_diagram.yaml"),
-           "--directory", ROOT, "--cores", str(a.cores), "--config", *config_args(a)]
-    if a.dry_run:
-        cmd += ["--dry-run", "--quiet"]
-    print(" ".join(shlex.quote(c) for c in cmd), flush=True)
-    done = subprocess.run(cmd).returncode
+    done = workflow_cli.run("phase_diagram", config_args(a), a)
     if a.dry_run or done != 0:
         return done
-    made = os.path.join(a.results, f"phase_diagram_f{a.f:g}")
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    for suffix in (".csv", ".png", "_phi.png", "_thumbnails.png"):
-        shutil.copyfile(made + suffix, a.out + suffix)
+    workflow_cli.copy_outputs(os.path.join(a.results, f"phase_diagram_f{a.f:g}"), a.out,
+                              (".csv", ".png", "_phi.png", "_thumbnails.png"))
     rows = load(a.out + ".csv")
     ok = sum(r["status"] == "ok" for r in rows)
     unstable = sum(r["status"] == "unstable" for r in rows)

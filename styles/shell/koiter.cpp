@@ -597,18 +597,19 @@ class KoiterShell : public ShellStyle {
     return out;
   }
 
-  // |E| times the integral of N_I ds along the limit curve of each listed boundary edge E,
-  // per control node (4 Gauss–Legendre points per edge: N is quartic along it)
-  std::vector<std::pair<int, double>> edge_integrals(Context& sim,
-                                                     const std::vector<std::string>& groups) {
+  // Calls point(ghost k, stencil, weight) at 4 Gauss–Legendre points along the limit curve of
+  // each boundary edge of the groups (N is quartic along an edge); the weight is the rule's
+  // weight times the edge's length as meshed.
+  template <class Point>
+  void for_edge_points(Context& sim, const char* key, const std::vector<std::string>& groups,
+                       Point point) const {
     const auto& g = mesh();
-    std::vector<double> sum(static_cast<size_t>(g.mesh.n_nodes()), 0.0);
     const double a = 0.5 - std::sqrt(3.0 / 7 + 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
     const double b = 0.5 - std::sqrt(3.0 / 7 - 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
     const double wa = (18 - std::sqrt(30.0)) / 72, wb = (18 + std::sqrt(30.0)) / 72;
     const std::array<std::pair<double, double>, 4> gl = {
         {{a, wa}, {b, wb}, {1 - b, wb}, {1 - a, wa}}};
-    for (std::size_t k : edges_in(sim, "line_load_edges", groups)) {
+    for (std::size_t k : edges_in(sim, key, groups)) {
       const auto& gh = g.ghosts[k];
       int t = -1;
       for (int e = 0; e < g.n_real_tris && t < 0; ++e) {
@@ -626,17 +627,29 @@ class KoiterShell : public ShellStyle {
           if (c[j] == gh.b0) l[j] = 1 - s;
           if (c[j] == gh.b2) l[j] = s;
         }
-        const shell::Stencil st = shell::evaluate(g, c, l[1], l[2]);
-        // per length of the edge as meshed: next to a corner of the mesh the ghost rings
-        // are open, the limit curve falls short of the corner and its stencil's weights sum
-        // to less than one (a tenth of the corner edge's load was lost with the limit
-        // curve's length element: a first-order error in the tip load); the load q |E| ds is
-        // shared in proportion to the weights, so that the whole of it arrives
-        double unity = 0;
-        for (const auto& r : st) unity += r.N;
-        for (const auto& r : st) sum[static_cast<size_t>(r.node)] += wq * r.N / unity * length;
+        point(k, shell::evaluate(g, c, l[1], l[2]), wq * length);
       }
     }
+  }
+
+  // |E| times the integral of N_I ds along the limit curve of each listed boundary edge E,
+  // per control node
+  std::vector<std::pair<int, double>> edge_integrals(Context& sim,
+                                                     const std::vector<std::string>& groups) {
+    const auto& g = mesh();
+    std::vector<double> sum(static_cast<size_t>(g.mesh.n_nodes()), 0.0);
+    for_edge_points(sim, "line_load_edges", groups,
+                    [&](std::size_t, const shell::Stencil& st, double w) {
+                      // per length of the edge as meshed: next to a corner of the mesh the ghost
+                      // rings are open, the limit curve falls short of the corner and its stencil's
+                      // weights sum to less than one (a tenth of the corner edge's load was lost
+                      // with the limit curve's length element: a first-order error in the tip
+                      // load); the load q |E| ds is shared in proportion to the weights, so that
+                      // the whole of it arrives
+                      double unity = 0;
+                      for (const auto& r : st) unity += r.N;
+                      for (const auto& r : st) sum[static_cast<size_t>(r.node)] += w * r.N / unity;
+                    });
     std::vector<std::pair<int, double>> out;
     for (std::size_t i = 0; i < sum.size(); ++i)
       if (sum[i] != 0) out.push_back({static_cast<int>(i), sum[i]});
@@ -650,56 +663,35 @@ class KoiterShell : public ShellStyle {
   std::vector<MomentPoint> edge_fibres(Context& sim, const std::vector<std::string>& groups,
                                        const Vec3& axis) {
     const auto& g = mesh();
-    const double a = 0.5 - std::sqrt(3.0 / 7 + 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
-    const double b = 0.5 - std::sqrt(3.0 / 7 - 2.0 / 7 * std::sqrt(6.0 / 5)) / 2;
-    const double wa = (18 - std::sqrt(30.0)) / 72, wb = (18 + std::sqrt(30.0)) / 72;
-    const std::array<std::pair<double, double>, 4> gl = {
-        {{a, wa}, {b, wb}, {1 - b, wb}, {1 - a, wa}}};
     std::vector<MomentPoint> out;
-    for (std::size_t k : edges_in(sim, "line_moment_edges", groups)) {
-      const auto& gh = g.ghosts[k];
-      int t = -1;
-      for (int e = 0; e < g.n_real_tris && t < 0; ++e) {
-        const auto& tri = g.mesh.tri[e];
-        const auto has = [&](int n) { return tri[0] == n || tri[1] == n || tri[2] == n; };
-        if (has(gh.b0) && has(gh.b2) && has(gh.interior)) t = e;
-      }
-      if (t < 0) throw InputError("shell 'koiter': a boundary edge without its triangle");
-      const shell::Tri c = shell::oriented_element(g, t);
-      const Vec3 X0 = g.mesh.x[gh.b0], X2 = g.mesh.x[gh.b2];
-      const double length = (X2 - X0).norm();
-      for (auto [s, wq] : gl) {
-        double l[3] = {0, 0, 0};
-        for (int j = 0; j < 3; ++j) {
-          if (c[j] == gh.b0) l[j] = 1 - s;
-          if (c[j] == gh.b2) l[j] = s;
-        }
-        const shell::Stencil st = shell::evaluate(g, c, l[1], l[2]);
-        Vec3 A1 = Vec3::Zero(), A2 = A1;
-        for (const auto& r : st) {
-          A1 += r.Nv * g.mesh.x[r.node];
-          A2 += r.Nw * g.mesh.x[r.node];
-        }
-        Vec3 nu = (X2 - X0).cross(A1.cross(A2)).normalized();
-        if (nu.dot(g.mesh.x[gh.interior] - X0) > 0) nu = -nu;  // outwards
-        Mat2 A;
-        A << A1.dot(A1), A1.dot(A2), A1.dot(A2), A2.dot(A2);
-        const Eigen::Vector2d cc = A.inverse() * Eigen::Vector2d(A1.dot(nu), A2.dot(nu));
-        MomentPoint mp;
-        mp.w = wq * length;
-        const Vec3 e1 = nu - nu.dot(axis) * axis;
-        if (e1.norm() < 1e-3)
-          throw InputError(
-              "shell 'koiter': line_moment points along the outward direction of an edge of "
-              "line_moment_edges: a twisting moment, which the fibre rotation does not carry; "
-              "give a moment about the edge (a bending moment)");
-        mp.e1 = e1.normalized();
-        mp.e2 = axis.cross(mp.e1);
-        for (const auto& r : st)
-          if (double d = cc[0] * r.Nv + cc[1] * r.Nw; d != 0) mp.rows.push_back({r.node, d});
-        out.push_back(std::move(mp));
-      }
-    }
+    for_edge_points(
+        sim, "line_moment_edges", groups, [&](std::size_t k, const shell::Stencil& st, double w) {
+          const auto& gh = g.ghosts[k];
+          const Vec3 X0 = g.mesh.x[gh.b0], X2 = g.mesh.x[gh.b2];
+          Vec3 A1 = Vec3::Zero(), A2 = A1;
+          for (const auto& r : st) {
+            A1 += r.Nv * g.mesh.x[r.node];
+            A2 += r.Nw * g.mesh.x[r.node];
+          }
+          Vec3 nu = (X2 - X0).cross(A1.cross(A2)).normalized();
+          if (nu.dot(g.mesh.x[gh.interior] - X0) > 0) nu = -nu;  // outwards
+          Mat2 A;
+          A << A1.dot(A1), A1.dot(A2), A1.dot(A2), A2.dot(A2);
+          const Eigen::Vector2d cc = A.inverse() * Eigen::Vector2d(A1.dot(nu), A2.dot(nu));
+          MomentPoint mp;
+          mp.w = w;
+          const Vec3 e1 = nu - nu.dot(axis) * axis;
+          if (e1.norm() < 1e-3)
+            throw InputError(
+                "shell 'koiter': line_moment points along the outward direction of an edge of "
+                "line_moment_edges: a twisting moment, which the fibre rotation does not carry; "
+                "give a moment about the edge (a bending moment)");
+          mp.e1 = e1.normalized();
+          mp.e2 = axis.cross(mp.e1);
+          for (const auto& r : st)
+            if (double d = cc[0] * r.Nv + cc[1] * r.Nw; d != 0) mp.rows.push_back({r.node, d});
+          out.push_back(std::move(mp));
+        });
     return out;
   }
 

@@ -2,7 +2,8 @@
 """scripts/dt_ladder.py on the real engine: a rung of the classic deck (fast mode) at the
 old Gear step against adaptive Verlet, one seed each. The rows must be read from the
 RESULT lines (a run that failed, or a deck that ignored `-v integrator=`, would show), the
-summary must name both rungs, and --reuse must keep finished runs instead of redoing them."""
+summary must name both rungs, and a second call (the script drives workflows/dt_ladder.smk)
+must keep the finished runs instead of redoing them."""
 import csv
 import os
 import subprocess
@@ -19,7 +20,8 @@ def main():
         out = os.path.join(tmp, "ladder")
         args = [sys.executable, script, "--slender", slender, "--deck", "crumple2d/classic",
                 "--var", "fast=1", "--var", "max_phi=0.15", "--rung", "gear:0.00316227766",
-                "--rung", "verlet:auto", "--seeds", "1", "--jobs", "1", "--out", out]
+                "--rung", "verlet:auto", "--seeds", "1", "--cores", "1",
+                "--results", os.path.join(tmp, "results"), "--out", out]
         p = subprocess.run(args, capture_output=True, text=True)
         assert p.returncode == 0, p.stdout + p.stderr
         with open(out + ".csv") as fh:
@@ -32,10 +34,11 @@ def main():
         with open(out + ".md") as fh:
             md = fh.read()
         assert "| gear:0.00316227766 | 1 (0)" in md and "| verlet:auto | 1 (0)" in md, md
-        # reusing the CSV: nothing is run again (a missing engine would fail every run)
-        p = subprocess.run(args[:2] + ["--slender", "/bin/false"] + args[4:] + ["--reuse", out + ".csv"],
-                           capture_output=True, text=True)
-        assert p.returncode == 0 and "seed=" not in p.stdout, p.stdout + p.stderr
+        # the same ladder again: nothing is run again (a missing engine would fail every run)
+        p = subprocess.run(args[:2] + ["--slender", "/bin/false"] + args[4:], capture_output=True, text=True)
+        assert p.returncode == 0 and "rule point:" not in p.stdout + p.stderr, p.stdout + p.stderr
+        with open(out + ".csv") as fh:
+            assert {r["rung"]: r for r in csv.DictReader(fh)} == rows
     print("dt_ladder: ok")
 
 

@@ -12,28 +12,30 @@ wire:
   - half_width: the 90th percentile of |y| / r over the wire inside the cavity (how far the
     packing reaches away from the feed axis).
 Writes <out>.csv, <out>.md and a PNG of the final wires (a row per seed, a column per
-ratio). A study, not a test.
+value). A study, not a test.
+
+A command-line entry point over workflows/crumple_study.smk: one job per (value, seed),
+resumable from checkpoints (a run a sitting cuts short continues on the next call, a
+finished one is not run again), locally on --cores or on Slurm with --profile slurm. Its
+results stay under --results; the table and picture are copied to --out. The functions
+below measure and draw; the workflow imports them.
 
   /usr/bin/python3 scripts/crumple_study.py --variable drag_factor --values 1 0.1 0.01 \
-      [--f 25] [--seeds 1 2 3 4] [--max-phi 0.2 | --jam] [--set damping=relative] [--jobs 2]
+      [--f 25] [--seeds 1 2 3 4] [--max-phi 0.2 | --jam] [--set damping=relative] [--cores 2]
   (scripts/hardening_study.py: the same with --variable hardening)
 """
 import argparse
-import concurrent.futures as cf
 import csv
-import math
 import os
 import sys
-import tempfile
 
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from slender.io import Trajectory  # noqa: E402
-from slender.run import run_deck  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import workflow_cli  # noqa: E402
 
-RESULT_KEYS = ("phi", "jammed", "ab_ratio", "winding", "loops", "contacts", "wall_contacts", "steps",
+RESULT_KEYS = ("phi", "force", "jammed", "ab_ratio", "winding", "loops", "contacts", "wall_contacts", "steps",
                "wall_s", "s")
 
 
@@ -52,27 +54,7 @@ def study_row(result, f, value, seed):
     return row
 
 
-def run(binary, examples, deck, f, variable, value, seed, max_phi, speed, fixed=()):
-    # no periodic frames: the dump writes the state the run stops in
-    variables = [f"f={f}", f"{variable}={value}", f"seed={seed}", f"max_phi={max_phi}",
-                 "dump_every=1000000000000", "thermo_every=10000", *fixed]
-    if speed is not None:
-        variables.append(f"s={speed}")
-    with tempfile.TemporaryDirectory() as tmp:
-        res = run_deck(os.path.join(examples, "crumple2d", deck + ".lua"), variables, cwd=tmp, binary=binary)
-        row = study_row(res.result, f, value, seed)
-        if res.returncode != 0 or "phi" not in row:
-            row.update(status="failed", error=(res.error or "?")[:200])
-            return row, None
-        with Trajectory(os.path.join(tmp, deck + ".h5")) as t:
-            chains = t.frame(-1)
-    # in chain order (injected nodes are appended to the arrays)
-    pos = chains[0] if len(chains) == 1 else np.concatenate(chains)
-    row["outer_share"], row["half_width"] = shape_measures(pos, f)
-    return row, pos
-
-
-KEYS = ["f", "s", "value", "seed", "phi", "jammed", "ab_ratio", "winding", "loops", "contacts",
+KEYS = ["f", "s", "value", "seed", "phi", "force", "jammed", "ab_ratio", "winding", "loops", "contacts",
         "wall_contacts", "outer_share", "half_width", "steps", "wall_s", "status", "error"]
 
 
@@ -128,10 +110,22 @@ def parse_value(text):
         return text
 
 
+def config_args(a, variable, label, max_phi):
+    """The workflow's --config of these arguments."""
+    fixed = list(a.set) + ([f"s={a.speed:g}"] if a.speed is not None else [])
+    cfg = [f"slender={os.path.abspath(a.slender)}", f"results={a.results}", f"deck={a.deck}",
+           f"f={a.f:g}", f"variable={variable}", f"label='{label}'",
+           "values=" + workflow_cli.yaml_list([parse_value(v) for v in a.values]),
+           "seeds=" + workflow_cli.yaml_list(a.seeds), f"max_phi={max_phi:g}",
+           "set=" + workflow_cli.yaml_vars(fixed), f"checkpoint_every={a.checkpoint_every}"]
+    if a.timeout:
+        cfg.append(f"timeout={a.timeout:g}")
+    return cfg
+
+
 def main(argv=None, variable=None, label=None, default_out=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
-    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
     ap.add_argument("--deck", default="classic")
     ap.add_argument("--f", type=float, default=25)
     if variable is None:
@@ -145,35 +139,36 @@ def main(argv=None, variable=None, label=None, default_out=None):
     ap.add_argument("--max-phi", type=float, default=0.2)
     ap.add_argument("--jam", action="store_true", help="run to the jam (max_phi = 1)")
     ap.add_argument("--speed", type=float, default=None, help="feed speed (default: the deck's s)")
-    ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--timeout", type=float, default=None, help="seconds per run (a cut run continues next time)")
+    ap.add_argument("--checkpoint-every", type=int, default=1000000, help="steps between a run's checkpoints")
+    ap.add_argument("--results", default=None,
+                    help="the workflow's results folder (default results/crumple_study_<deck>_f<f>_<variable> "
+                         "in the repository); runs already there are not run again")
     ap.add_argument("--out", default=default_out)
+    workflow_cli.add_options(ap, max(1, os.cpu_count() or 2))
     a = ap.parse_args(argv)
     if variable is None:
         variable, label = a.variable, a.label or a.variable
     if a.out is None:
         ap.error("--out is required")
-    values = [parse_value(v) for v in (a.values or ["0.05", "0.1", "0.2", "0.4", "0.8"])]
-    a.slender, a.examples = os.path.abspath(a.slender), os.path.abspath(a.examples)
+    a.values = a.values or ["0.05", "0.1", "0.2", "0.4", "0.8"]
     max_phi = 1.0 if a.jam else a.max_phi
-    cases = [(v, s) for s in a.seeds for v in values]
-    with cf.ThreadPoolExecutor(a.jobs) as ex:
-        results = list(ex.map(lambda c: run(a.slender, a.examples, a.deck, a.f, variable, c[0], c[1], max_phi,
-                                            a.speed, a.set), cases))
-    rows = [r for r, _ in results]
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    stop = "to the jam" if a.jam else f"to phi = {max_phi:g}"
-    fixed = f" ({', '.join(a.set)})" if a.set else ""
-    title = f"{a.deck}, f = {a.f:g}{fixed}, {stop}: the wire against {label}"
-    write_tables(rows, a.out, title, label)
-    plot(results, values, a.seeds, a.out, title, label)
+    stem = f"{a.deck}_f{a.f:g}_{variable}"
+    a.results = os.path.abspath(a.results or os.path.join(ROOT, "results", "crumple_study_" + stem))
+    done = workflow_cli.run("crumple_study", config_args(a, variable, label, max_phi), a)
+    if a.dry_run or done != 0:
+        return done
+    workflow_cli.copy_outputs(os.path.join(a.results, stem), a.out, (".csv", ".md", ".png"))
+    with open(a.out + ".csv") as fh:
+        rows = list(csv.DictReader(fh))
     for r in rows:
-        head = f"{label} = {value_text(r['value'])}, seed {r['seed']}"
+        head = f"{label} = {r['value']}, seed {r['seed']}"
         if r["status"] != "ok":
-            print(f"{head}: failed: {r.get('error')}")
+            print(f"{head}: {r['status']}: {r.get('error')}")
             continue
-        print(f"{head}: phi {r['phi']:.4f} (jammed {int(r['jammed'])}), A/B {r['ab_ratio']:.2f}, "
-              f"outer share {r['outer_share']:.2f}, half width {r['half_width']:.2f}, "
-              f"wall contacts {int(r['wall_contacts'])}, {r['wall_s']:.0f} s")
+        print(f"{head}: phi {float(r['phi']):.4f} (jammed {int(float(r['jammed']))}), A/B {float(r['ab_ratio']):.2f}, "
+              f"outer share {float(r['outer_share']):.2f}, half width {float(r['half_width']):.2f}, "
+              f"wall contacts {int(float(r['wall_contacts']))}, {float(r['wall_s']):.0f} s")
     print("wrote", a.out + ".csv", a.out + ".md", a.out + ".png")
     return 0 if all(r["status"] == "ok" for r in rows) else 1
 

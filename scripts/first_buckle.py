@@ -14,22 +14,25 @@ measures the buckled wire:
     span's lowest bending mode, over the span. A feed is quasi-static when Pi << 1.
 Writes <out>.csv and a PNG of the buckled wires. A study, not a test.
 
+A command-line entry point over workflows/first_buckle.smk: one job per (f, speed),
+resumable (a run cut short continues from its checkpoint, a finished one is not run
+again), locally on --cores or on Slurm with --profile slurm; the runs stay under --results.
+The functions below measure and draw; the workflow imports them.
+
   /usr/bin/python3 scripts/first_buckle.py [--f 50 100] [--speeds 0.08 0.02 0.005]
 """
 import argparse
-import concurrent.futures as cf
 import csv
 import math
 import os
 import sys
-import tempfile
 
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from slender.io import Trajectory  # noqa: E402
-from slender.run import run_deck  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import workflow_cli  # noqa: E402
+
 K2, L0, M = 60.0, 1.0, 1.0  # examples/crumple2d/lib/scene.lua
 
 
@@ -48,66 +51,54 @@ def measure(x, y, r):
     return abs(xa[k]) / r, float(np.abs(ya).max()), half_waves, central
 
 
-def run(binary, examples, deck, f, v, feed, seed):
-    # phi counts the wire inside the cavity (fix inject/wire): the straight start spans 2r
+def point_variables(f, v, feed, seed):
+    """The deck variables of one point: the run stops (max_phi) once `feed` cavity radii of
+    wire have entered per channel (phi counts the wire inside the cavity, fix inject/wire:
+    the straight start spans 2r)."""
     length = 2 * f + 2 * feed * f
-    max_phi = length / (math.pi * f * f)
-    # no periodic frames: the dump writes the state the run stops in
-    variables = [f"f={f}", f"s={v}", f"seed={seed}", f"max_phi={max_phi}", "dump_every=1000000000000"]
-    with tempfile.TemporaryDirectory() as tmp:
-        res = run_deck(os.path.join(examples, "crumple2d", deck + ".lua"), variables, cwd=tmp, binary=binary)
-        row = {"f": f, "speed": v, "seed": seed, "Pi": span_number(f, v), "status": "ok"}
-        if res.returncode != 0:
-            row.update(status="failed", error=(res.error or "?")[:200])
-            return row, None
-        with Trajectory(os.path.join(tmp, deck + ".h5")) as t:
-            chains, step = t.frame(-1), int(t.steps[-1])
-    assert len(chains) == 1, f"one open wire expected, found {len(chains)} pieces"
-    pos = chains[0]
-    peak_x, amp, hw, central = measure(pos[:, 0], pos[:, 1], f)
-    row.update(steps=step, peak_x_over_r=peak_x, amplitude=amp, half_waves=hw, central=central)
-    return row, pos[:, :2]
+    return {"f": f, "s": v, "seed": seed, "max_phi": length / (math.pi * f * f)}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
-    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
-    ap.add_argument("--deck", default="classic")
-    ap.add_argument("--f", type=float, nargs="+", default=[50, 100])
-    ap.add_argument("--speeds", type=float, nargs="+", default=[0.08, 0.02, 0.005])
-    ap.add_argument("--feed", type=float, default=0.2, help="wire fed per channel, in cavity radii")
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--jobs", type=int, default=1)
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "crumple2d", "first_buckle"))
-    a = ap.parse_args()
-    a.slender, a.examples = os.path.abspath(a.slender), os.path.abspath(a.examples)
-    cases = [(f, v) for f in a.f for v in a.speeds]
-    with cf.ThreadPoolExecutor(a.jobs) as ex:
-        results = list(ex.map(lambda c: run(a.slender, a.examples, a.deck, c[0], c[1], a.feed, a.seed),
-                              cases))
+def wire_measures(pos, r):
+    """The measures of a buckled wire (its nodes in chain order) in a cavity of radius r."""
+    peak_x, amp, hw, central = measure(pos[:, 0], pos[:, 1], r)
+    return {"peak_x_over_r": peak_x, "amplitude": amp, "half_waves": hw, "central": central}
+
+
+def study_row(f, v, seed, record):
+    """A row of the table from a point's run record (the workflow's JSON)."""
+    row = {"f": f, "speed": v, "seed": seed, "Pi": span_number(f, v), "status": "ok"}
+    measures = record.get("measures") or {}
+    if record["status"] != "ok" or not measures:
+        row.update(status="failed", error=(record.get("error") or "no final state")[:200])
+        return row
+    row["steps"] = int(float(record["result"]["steps"]))
+    row.update(measures)
+    return row
+
+
+KEYS = ["f", "speed", "seed", "Pi", "steps", "peak_x_over_r", "amplitude", "half_waves", "central",
+        "status", "error"]
+
+
+def write_outputs(results, out, deck, feed):
+    """<out>.csv (a row per point) and <out>.png (the buckled wires, a row per f and a
+    column per speed) from (row, positions or None) pairs."""
+    results = sorted(results, key=lambda rp: (rp[0]["f"], -rp[0]["speed"]))
     rows = [r for r, _ in results]
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    keys = ["f", "speed", "seed", "Pi", "steps", "peak_x_over_r", "amplitude", "half_waves", "central",
-            "status", "error"]
-    with open(a.out + ".csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
+    with open(out + ".csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=KEYS, extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
-    for r in rows:
-        if r["status"] != "ok":
-            print(f"f = {r['f']:g}, v = {r['speed']:g}: failed: {r.get('error')}")
-            continue
-        print(f"f = {r['f']:g}, v = {r['speed']:g}: Pi = {r['Pi']:.3f}, peak at |x|/r = "
-              f"{r['peak_x_over_r']:.2f}, amplitude {r['amplitude']:.1f} d, {r['half_waves']} half-waves, "
-              f"central share {r['central']:.2f}, {r['steps']} steps")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fs = sorted(set(a.f))
-    fig, axes = plt.subplots(len(fs), len(a.speeds), figsize=(3.2 * len(a.speeds), 2.2 * len(fs) + 0.6),
+    fs = sorted({r["f"] for r in rows})
+    speeds = sorted({r["speed"] for r in rows}, reverse=True)
+    fig, axes = plt.subplots(len(fs), len(speeds), figsize=(3.2 * len(speeds), 2.2 * len(fs) + 0.6),
                              squeeze=False)
-    for (r, xy), ax in zip(results, [ax for row in axes for ax in row]):
+    for r, xy in results:
+        ax = axes[fs.index(r["f"])][speeds.index(r["speed"])]
         ax.set_title(f"f = {r['f']:g}, v = {r['speed']:g}, Pi = {r['Pi']:.3f}", fontsize=9)
         t = np.linspace(0, 2 * np.pi, 200)
         ax.plot(r["f"] * np.cos(t), r["f"] * np.sin(t), color="0.6", lw=0.8)
@@ -117,9 +108,44 @@ def main():
         ax.set_ylim(-0.6 * r["f"], 0.6 * r["f"])
         ax.set_xticks([])
         ax.set_yticks([])
-    fig.suptitle(f"{a.deck}: the wire after {a.feed:g} r fed per channel", fontsize=10)
+    fig.suptitle(f"{deck}: the wire after {feed:g} r fed per channel", fontsize=10)
     fig.tight_layout()
-    fig.savefig(a.out + ".png", dpi=110)
+    fig.savefig(out + ".png", dpi=110)
+    plt.close(fig)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
+    ap.add_argument("--deck", default="classic")
+    ap.add_argument("--f", type=float, nargs="+", default=[50, 100])
+    ap.add_argument("--speeds", type=float, nargs="+", default=[0.08, 0.02, 0.005])
+    ap.add_argument("--feed", type=float, default=0.2, help="wire fed per channel, in cavity radii")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--results", default=None,
+                    help="the workflow's results folder (default results/first_buckle_<deck>); "
+                         "runs already there are not run again")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "crumple2d", "first_buckle"))
+    workflow_cli.add_options(ap, max(1, os.cpu_count() or 2))
+    a = ap.parse_args(argv)
+    a.results = os.path.abspath(a.results or os.path.join(ROOT, "results", f"first_buckle_{a.deck}"))
+    lists = workflow_cli.yaml_list
+    cfg = [f"slender={os.path.abspath(a.slender)}", f"results={a.results}", f"deck={a.deck}",
+           f"f={lists(a.f)}", f"speeds={lists(a.speeds)}", f"feed={a.feed:g}", f"seed={a.seed}"]
+    done = workflow_cli.run("first_buckle", cfg, a)
+    if a.dry_run or done != 0:
+        return done
+    workflow_cli.copy_outputs(os.path.join(a.results, "first_buckle"), a.out, (".csv", ".png"))
+    with open(a.out + ".csv") as fh:
+        rows = list(csv.DictReader(fh))
+    for r in rows:
+        head = f"f = {float(r['f']):g}, v = {float(r['speed']):g}"
+        if r["status"] != "ok":
+            print(f"{head}: failed: {r.get('error')}")
+            continue
+        print(f"{head}: Pi = {float(r['Pi']):.3f}, peak at |x|/r = {float(r['peak_x_over_r']):.2f}, "
+              f"amplitude {float(r['amplitude']):.1f} d, {r['half_waves']} half-waves, "
+              f"central share {float(r['central']):.2f}, {r['steps']} steps")
     print("wrote", a.out + ".csv", a.out + ".png")
     return 0 if all(r["status"] == "ok" for r in rows) else 1
 

@@ -99,7 +99,7 @@ def config_args(a):
     if a.timeout:
         cfg.append(f"timeout={a.timeout:g}")
     if not a.retry_dt:
-        cfg.append("retry_unstable=null")
+        cfg.append("retry_unstable=")  # empty: None (Snakemake reads "null" as a string)
     variables = a.var + ([f"max_steps={a.max_steps:.0f}"] if a.max_steps else [])
     if variables:
         cfg.append("vars=" + workflow_cli.yaml_vars(variables))

@@ -3,15 +3,17 @@
 runs examples/shells/econe.lua without self-contact up to phi_e (default 3, below the
 first contact of every h) on a disc of outer edge `--edge` (default 1/8) whose core is
 refined `level` times (refine_center = 0.3), for each h and level, and writes <out>.csv (one row per
-run, appended at once, so an interrupted study resumes) and <out>.png: R_C(h) per
+run) and <out>.png: R_C(h) per
 level with a power-law fit on the finest level, and R_C against the core edge (mesh
 convergence). R_C is the energy criterion of compute core_radius; R_C_s (U_s below 10 %
 of its peak) is logged next to it.
 
   /usr/bin/python3 scripts/shell_core_radius.py --h 0.04 0.02 0.01 0.005 --levels 2 3 4 5
 
-The same study as a Snakemake workflow (one job per run, on Slurm too):
-workflows/shell_core_radius.smk (workflows/README.md).
+A command-line entry point over workflows/shell_core_radius.smk (workflows/README.md): one
+job per (h, level), resumable (a finished run is not run again), locally on --cores or on
+Slurm with --profile slurm; the runs stay under --results, the table and picture are
+copied to --out. run_one and plot are what the workflow runs and draws with.
 """
 import argparse
 import csv
@@ -24,6 +26,10 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from slender.run import run_deck  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import workflow_cli  # noqa: E402
+
 FIELDS = ["h", "edge", "level", "core_edge", "phi_e", "R_C", "R_C_s", "Eb_hat", "E_s_over_E_b",
           "triangles", "fire_steps", "wall_s", "status", "error"]
 
@@ -91,35 +97,34 @@ def plot(rows, out):
     print(f"wrote {out}.png")
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--slender", default=os.path.join(ROOT, "build", "slender"))
-    ap.add_argument("--examples", default=os.path.join(ROOT, "examples"))
     ap.add_argument("--h", type=float, nargs="+", default=[0.04, 0.02, 0.01, 0.005])
     ap.add_argument("--levels", type=int, nargs="+", default=[2, 3, 4, 5])
     ap.add_argument("--phi", type=float, default=3.0)
     ap.add_argument("--edge", type=float, default=0.125, help="outer edge of the disc mesh")
+    ap.add_argument("--results", default=None,
+                    help="the workflow's results folder (default results/shell_core_radius); runs "
+                         "already there are not run again")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "shells", "core_radius"))
-    a = ap.parse_args()
-    path = a.out + ".csv"
-    rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
-    done = {(float(r["h"]), float(r.get("edge") or 0.125), int(r["level"])) for r in rows
-            if r["status"] == "ok"}
-    if not os.path.exists(path):
-        with open(path, "w") as fh:
-            csv.DictWriter(fh, FIELDS).writeheader()
-    for lv in sorted(a.levels):
-        for h in a.h:
-            if (h, a.edge, lv) in done:
-                continue
-            row = run_one(a, h, lv)
-            with open(path, "a") as fh:
-                csv.DictWriter(fh, FIELDS).writerow(row)
-            rows.append({k: str(v) for k, v in row.items()})
-            print(f"h {h} level {lv}: {row['status']} R_C {row.get('R_C')} wall {row.get('wall_s')} s",
-                  flush=True)
-    plot(rows, a.out)
+    workflow_cli.add_options(ap, max(1, os.cpu_count() or 2))
+    a = ap.parse_args(argv)
+    a.results = os.path.abspath(a.results or os.path.join(ROOT, "results", "shell_core_radius"))
+    lists = workflow_cli.yaml_list
+    cfg = [f"slender={os.path.abspath(a.slender)}", f"results={a.results}", "name=core_radius",
+           f"h={lists(a.h)}", f"levels={lists(a.levels)}", f"edge={a.edge:g}", f"phi={a.phi:g}"]
+    done = workflow_cli.run("shell_core_radius", cfg, a)
+    if a.dry_run or done != 0:
+        return done
+    workflow_cli.copy_outputs(os.path.join(a.results, "core_radius"), a.out, (".csv", ".png"))
+    with open(a.out + ".csv") as fh:
+        rows = list(csv.DictReader(fh))
+    for r in rows:
+        print(f"h {r['h']} level {r['level']}: {r['status']} R_C {r.get('R_C')} wall {r.get('wall_s')} s")
+    print(f"wrote {a.out}.csv, {a.out}.png")
+    return 0 if rows and all(r["status"] == "ok" for r in rows) else 1
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -23,14 +23,18 @@ order is below its expectation, 2 usage error.
 --keep takes the rows of the cases not rerun from the existing OUT/validation.csv, so the
 report still covers every case.
 
-The same report as a Snakemake workflow, one job per run, resumable and parallel (only the
-missing rows run): workflows/validation.smk (workflows/README.md).
+A command-line entry point over workflows/validation.smk (workflows/README.md): one job per
+run, resumable (a row already in --results is not run again: delete a case's rows after
+changing its deck), --cores at a time (default 1, so that the wall times are those of a
+quiet machine), --profile slurm for a cluster. The functions below run one row, fit the
+orders and write the report; the workflow imports them.
 """
 import argparse
 import csv
 import datetime
 import math
 import shlex
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -39,9 +43,28 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO / "python"))
 sys.path.insert(0, str(REPO / "scripts"))
 from slender.run import run_deck  # noqa: E402
-import work_precision as wp  # noqa: E402  (number parsing, Markdown escaping, git describe)
 
 EX = REPO / "examples"
+
+
+def to_float(value):
+    """float(value), or None if it is not a number."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return None
+
+
+def md_escape(text):
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def git_describe():
+    try:
+        return subprocess.run(["git", "-C", str(REPO), "describe", "--always", "--dirty"],
+                              capture_output=True, text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return ""
 THEORY_KISS = 7.08  # docs/models.md §7.1 A-1: phi_e^kiss -> 7.08 as h -> 0
 
 
@@ -311,18 +334,18 @@ def run_one(slender, case, value, integ, dt, fast, timeout):
             return row
         r = results[-1]
         row["status"] = "ok"
-        row["wall_s"] = wp.to_float(r.get("wall_s")) or row["run_s"]
-        row["dt"] = wp.to_float(r.get("dt"))
-        row["throughput"] = wp.to_float(r.get("node_steps_per_s"))
+        row["wall_s"] = to_float(r.get("wall_s")) or row["run_s"]
+        row["dt"] = to_float(r.get("dt"))
+        row["throughput"] = to_float(r.get("node_steps_per_s"))
         row["throughput_kind"] = "node"
         if row["throughput"] is None and r.get("element_steps_per_s"):
-            row["throughput"] = wp.to_float(r.get("element_steps_per_s"))
+            row["throughput"] = to_float(r.get("element_steps_per_s"))
             row["throughput_kind"] = "element"
         try:
             if "metric" in case:
                 row["rel_error"], row["note"] = case["metric"](Path(tmp), r)
             else:
-                row["rel_error"] = wp.to_float(r.get("rel_error"))
+                row["rel_error"] = to_float(r.get("rel_error"))
         except Exception as e:  # a post-processing failure is a failed run, reported
             row["status"] = "failed"
             row["error"] = "post-processing: %s" % e
@@ -401,7 +424,7 @@ def write_report(out, header, per_case, fast):
         for r in rows:
             if r["status"] != "ok":
                 lines.append("| %s | %s | | failed | | | %s |" % (
-                    r["resolution"], r["integrator"], wp.md_escape(r.get("error", ""))[:120]))
+                    r["resolution"], r["integrator"], md_escape(r.get("error", ""))[:120]))
                 continue
             lines.append("| %s | %s | %s%s | %s | %s | %s | %s |" % (
                 r["resolution"], r["integrator"], g(r.get("dt"), "%.3g"),
@@ -485,6 +508,17 @@ def write_outputs(out, header, per_case, fast):
             w.writerows(rows)
 
 
+def read_rows(path):
+    """The rows of a report's validation.csv by case, numbers as floats."""
+    kept = {}
+    with open(path) as fh:
+        for r in csv.DictReader(fh):
+            for k in ("dt", "rel_error", "wall_s", "throughput", "run_s"):
+                r[k] = to_float(r.get(k)) if r.get(k) not in (None, "") else None
+            kept.setdefault(r["case"], []).append(r)
+    return kept
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--slender", default=str(REPO / "build" / "slender"))
@@ -494,59 +528,63 @@ def main(argv=None):
     p.add_argument("--timeout", type=float, default=3600.0, help="seconds per run")
     p.add_argument("--keep", action="store_true",
                    help="keep the other cases' rows from the existing OUT/validation.csv")
+    p.add_argument("--results", default=None,
+                   help="the workflow's folder of one record per run (default results/validation, "
+                        "or results/validation_fast with --fast, in the repository); rows already "
+                        "there are not run again")
+    p.add_argument("--cores", type=int, default=1,
+                   help="runs at a time (1: the wall times of the report are those of a quiet machine)")
+    p.add_argument("--profile", default="local", choices=["local", "slurm"])
+    p.add_argument("--dry-run", action="store_true", help="print what would run and exit")
     args = p.parse_args(argv)
     slender = Path(args.slender).resolve()
     if not slender.is_file():
         print("error: no slender at %s" % slender, file=sys.stderr)
         return 2
-    out = Path(args.out)
-    (out / "validation").mkdir(parents=True, exist_ok=True)
+    out = Path(args.out).resolve()
+    results = Path(args.results or REPO / "results" / ("validation_fast" if args.fast else "validation")).resolve()
+    kept = read_rows(out / "validation.csv") if args.keep and (out / "validation.csv").is_file() else {}
+    kept = {c: rows for c, rows in kept.items() if c not in args.cases}
+    # the workflow writes the report of the cases run; with rows kept it goes to the
+    # results folder, and the merged report to OUT below
+    made = results / "report" if kept else out
     started = datetime.datetime.now()
+    cmd = ["snakemake", "-s", str(REPO / "workflows" / "validation.smk"),
+           "--profile", str(REPO / "workflows" / "profiles" / args.profile),
+           "--directory", str(REPO), "--cores", str(args.cores), "--config",
+           "slender=%s" % slender, "results=%s" % results, "out=%s" % made,
+           "cases=[%s]" % ", ".join(args.cases), "fast=%s" % args.fast,  # True / False: Snakemake's booleans
+           "check=True", "timeout=%g" % args.timeout,
+           # the report is made again whenever asked, from the rows there are
+           "--forcerun", "report"]
+    if args.dry_run:
+        cmd += ["--dry-run", "--quiet"]
+    print(" ".join(shlex.quote(c) for c in cmd), flush=True)
+    done = subprocess.run(cmd).returncode
+    if args.dry_run or not kept:
+        return done
+    if not (made / "validation.csv").is_file():
+        return done or 1
+    # merged: the rows just made, and the kept rows of the other cases, in report order
+    new = read_rows(made / "validation.csv")
     per_case, problems = [], []
-    kept = {}
-    if args.keep and (out / "validation.csv").is_file():
-        with open(out / "validation.csv") as fh:
-            for r in csv.DictReader(fh):
-                for k in ("dt", "rel_error", "wall_s", "throughput", "run_s"):
-                    r[k] = wp.to_float(r.get(k)) if r.get(k) not in (None, "") else None
-                kept.setdefault(r["case"], []).append(r)
     for case in CASES:
-        if case["id"] not in args.cases:
-            if case["id"] in kept:
-                rows = kept[case["id"]]
-                per_case.append((case, rows, summarize(case, rows, False)[0]))
+        rows = new.get(case["id"]) or kept.get(case["id"])
+        if not rows:
             continue
-        rows = []
-        for v, integ in ladder(case, args.fast):
-            r = run_one(slender, case, v, integ, None, args.fast, args.timeout)
-            rows.append(r)
-            print("%-20s %s=%-8s %-7s %s" % (case["id"], case["ladder"][0], v, integ,
-                  "rel_error %.3e  wall %.3g s" % (r["rel_error"], r["wall_s"])
-                  if r["status"] == "ok" else "FAILED: %s" % r.get("error")), flush=True)
-        for v, integ, f in dt_ladder(case, args.fast):
-            auto = [r for r in rows if r["integrator"] == integ and r["resolution"] == v
-                    and r["status"] == "ok" and r.get("dt")]
-            if auto:
-                rows.append(run_one(slender, case, v, integ, auto[0]["dt"] / f, False, args.timeout))
-        main_ords, case_problems = summarize(case, rows, args.fast, out / "validation")
-        problems += case_problems
-        if case["order"]:
-            print("%-20s observed order %s (expected >= %.1f)" % (
-                case["id"], ", ".join("%.2f" % o for o in main_ords), case["order"]), flush=True)
-        per_case.append((case, rows, main_ords))
-    elapsed = (datetime.datetime.now() - started).total_seconds()
+        ords, case_problems = summarize(case, rows, args.fast, out / "validation" if case["id"] in new else None)
+        problems += case_problems if case["id"] in new else []
+        per_case.append((case, rows, ords))
+    (out / "validation").mkdir(parents=True, exist_ok=True)
     header = ["- date: %s" % started.strftime("%Y-%m-%d %H:%M"),
-              "- git: `%s`" % (wp.git_describe() or "unknown"),
-              "- report time: %.0f s (one 2-core machine, one run per row; compare within a table)" % elapsed]
-    if kept:
-        header.append("- rows of the cases not rerun kept from the previous report (--keep): %s" %
-                      ", ".join(c for c in kept if c not in args.cases))
+              "- git: `%s`" % (git_describe() or "unknown"),
+              "- made by `workflows/validation.smk` from one job per row (one 2-core machine, one run "
+              "per row; compare within a table)",
+              "- rows of the cases not rerun kept from the previous report (--keep): %s" % ", ".join(kept)]
     write_outputs(out, header, per_case, args.fast)
     print("wrote %s" % (out / "validation.md"))
-    for m in problems:
-        print("problem: %s" % m)
     print("validation: %d cases, %d problems" % (len(per_case), len(problems)))
-    return 1 if problems else 0
+    return done or (1 if problems else 0)
 
 
 if __name__ == "__main__":

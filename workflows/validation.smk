@@ -125,7 +125,7 @@ rule report:
             per_case.append((case, rows, ords))
             problems += case_problems
         header = ["- date: %s" % datetime.datetime.now().strftime("%Y-%m-%d %H:%M"),
-                  "- git: `%s`" % (vr.wp.git_describe() or "unknown"),
+                  "- git: `%s`" % (vr.git_describe() or "unknown"),
                   "- made by `workflows/validation.smk` from one job per row (one 2-core "
                   "machine, one run per row; compare within a table)"]
         vr.write_outputs(out, header, per_case, FAST)

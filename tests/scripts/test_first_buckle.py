@@ -30,7 +30,8 @@ def main():
         def study(f, v, feed):
             out = os.path.join(tmp, f"fb{f}")
             p = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "first_buckle.py"), "--slender",
-                                slender, "--f", str(f), "--speeds", str(v), "--feed", str(feed), "--out", out],
+                                slender, "--f", str(f), "--speeds", str(v), "--feed", str(feed), "--out", out,
+                                "--results", os.path.join(tmp, f"res{f}"), "--cores", "2"],
                                capture_output=True, text=True)
             assert p.returncode == 0, p.stdout + p.stderr
             with open(out + ".csv") as fh:

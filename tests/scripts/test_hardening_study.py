@@ -33,7 +33,8 @@ def main():
         out = os.path.join(tmp, "hs")
         p = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "hardening_study.py"), "--slender",
                             slender, "--f", "12", "--ratios", "0.05", "0.8", "--seeds", "1", "--max-phi", "0.3",
-                            "--out", out], capture_output=True, text=True)
+                            "--out", out, "--results", os.path.join(tmp, "results"), "--cores", "2"],
+                           capture_output=True, text=True)
         assert p.returncode == 0, p.stdout + p.stderr
         with open(out + ".csv") as fh:
             rows = {float(r["value"]): r for r in csv.DictReader(fh)}

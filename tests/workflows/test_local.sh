@@ -150,6 +150,20 @@ assert "2 decks, 0 failed." in open(os.path.join(results, "summary.md")).read()
 PY
 echo "examples: 2 decks, summary ($((SECONDS - t0)) s)"
 
+# run-examples --full is the same workflow in full mode (the decks' own parameters)
+t0=$SECONDS
+/usr/bin/python3 "$repo/scripts/run-examples" --full --slender "$bin" --out "$tmp/examples_full" \
+  "validation/cantilever2d*" > "$tmp/examples_full.log" 2>&1 || { tail -n 30 "$tmp/examples_full.log"; fail "run-examples --full"; }
+/usr/bin/python3 - "$tmp/examples_full" << 'PY' || fail "run-examples --full"
+import json, os, sys
+out = sys.argv[1]
+record = json.load(open(os.path.join(out, "decks", "validation", "cantilever2d.json")))
+assert record["status"] == "ok" and record["variables"] == {}, record  # no -v fast=1
+summary = open(os.path.join(out, "summary.md")).read()
+assert "(full mode)" in summary and "1 decks, 0 failed." in summary, summary
+PY
+echo "run-examples --full: the examples workflow in full mode ($((SECONDS - t0)) s)"
+
 # the suite's long decks resume: a crumpling deck (reads -v restart=) cut by a timeout
 # fails its job, leaves its state, and the next call continues it to the uninterrupted
 # result; the finished deck's folder keeps its outputs but no state to continue
@@ -220,7 +234,7 @@ echo "crumple study: 2 values, table, picture; a point cut by a timeout continue
 # makes the checked report fail, naming the case
 t0=$SECONDS
 study validation || { tail -n 30 "$tmp/validation.log"; fail "validation"; }
-/usr/bin/python3 "$repo/scripts/validation_report.py" --slender "$bin" --fast --out "$tmp/validation_script" \
+/usr/bin/python3 "$repo/scripts/validation_report.py" --slender "$bin" --fast --out "$tmp/validation_script" --results "$tmp/validation_script_runs" \
   --cases cantilever_small sphere_pressure > "$tmp/validation_script.log" 2>&1 ||
   { tail -n 20 "$tmp/validation_script.log"; fail "the script's report"; }
 check validation << PY

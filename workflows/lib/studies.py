@@ -16,6 +16,7 @@ SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.a
 sys.path.insert(0, SCRIPTS)
 
 import crumple_study  # noqa: E402
+import first_buckle  # noqa: E402
 import pack3d_sweep  # noqa: E402
 import phase_diagram  # noqa: E402
 
@@ -133,6 +134,27 @@ def crumple_study_outputs(records, positions, out, title, label, values, seeds):
     rows = [r for r, _ in results]
     crumple_study.write_tables(rows, out, title, label, writer="workflows/crumple_study.smk")
     crumple_study.plot(results, values, seeds, out, title, label)
+
+
+def first_buckle_measures(work, radius, npy):
+    """scripts/first_buckle.py's measures of the buckled wire the run in work left; its
+    positions go to npy (for the picture)."""
+    pos = final_wire(work)
+    if pos is None:
+        return {}
+    np.save(npy, pos)
+    return first_buckle.wire_measures(pos, radius)
+
+
+def first_buckle_outputs(records, positions, out, deck, feed):
+    """<out>.csv and <out>.png of scripts/first_buckle.py from the points' records and the
+    .npy files of their buckled wires."""
+    results = []
+    for record, npy in zip(records, positions):
+        var = record["variables"]
+        row = first_buckle.study_row(float(var["f"]), float(var["s"]), int(var["seed"]), record)
+        results.append((row, np.load(npy) if os.path.getsize(npy) > 0 else None))
+    first_buckle.write_outputs(results, out, deck, feed)
 
 
 def packing_row(record):

@@ -424,9 +424,11 @@ void Simulation::cache_frequencies() {
 
 double Simulation::omega_now(std::string* who) const {
   double w2 = omega2_fixed_, best = 0.0;
+  const bool alone = integrator_ && integrator_->trusts_measured();
   for (const auto& m : measuring_) {
     const double measured = m.style->measured_frequency();
-    const double w = std::max(m.nominal, measured);
+    // a style that measures nothing (negative) keeps its nominal frequency
+    const double w = alone && measured >= 0.0 ? measured : std::max(m.nominal, measured);
     w2 += w * w;
     if (who && measured > m.nominal && w > best) {
       best = w;
@@ -633,12 +635,31 @@ void Simulation::run(const RunOptions& opt) {
       break;
     }
   const bool adaptive = integrator_->adaptive();
-  const double dt_cap = dt;
+  double dt_cap = dt;
+  // Trusting the measured contacts, "auto" is capped by the terms that measure nothing,
+  // and no node may move more than safety times a tenth of the shortest rest length per
+  // step: a contact that begins within a step (a node arriving at speed) then cannot
+  // overlap much deeper than the nominal estimate assumes (a tenth of a diameter, with
+  // diameters about a rest length), where its stiffness was never measured.
+  const bool trust = adaptive && integrator_->trusts_measured();
+  const double approach = trust ? integrator_->safety() * 0.1 * topo_.min_rest_length() : 0.0;
+  if (trust && integrator_->requested_dt() <= 0) {
+    double w2 = omega2_fixed_;
+    for (const auto& m : measuring_)
+      if (m.style->measured_frequency() < 0.0) w2 += m.nominal * m.nominal;
+    if (w2 > 0) dt_cap = integrator_->safety() * stability_limit() / std::sqrt(w2);
+  }
   for (long k = 1; k <= opt.steps; ++k) {
     // an adaptive step follows the measured stiffness of the contacts (never above the
     // requested or nominal "auto" step): dense packings load a node with several deep
     // contacts, which the nominal estimate does not know
     if (adaptive) dt = std::min(dt_cap, integrator_->safety() * stability_limit() / omega_now());
+    if (trust && approach < 1e299) {
+      double v2 = 0.0;
+      for (std::size_t i = 0, n = nodes_.n_owned(); i < n; ++i)
+        v2 = std::max(v2, nodes_.v[i].squaredNorm());
+      if (v2 > 0.0) dt = std::min(dt, approach / std::sqrt(v2));
+    }
     const double t_start = time;
     integrator_->step(*this);
     ++step;

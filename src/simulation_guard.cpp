@@ -22,7 +22,13 @@ void Simulation::fail(const std::string& what, long bad_step) {
           "or state): look at the masses and the stiffnesses the deck or checkpoint gives.";
   } else if (w > 0) {
     double limit = suggest_dt(1.0);
-    if (dt > limit)
+    if (dt > limit && integrator_ && integrator_->adaptive() && integrator_->trusts_measured())
+      os << " The adaptive step dt = " << dt
+         << " trusted the contacts' measured stiffness (omega now " << omega_now()
+         << ") and was above the nominal stable limit " << limit << " (stiffest term: " << who
+         << ", combined omega_max = " << w
+         << "); rerun with trust_measured = false, or with dt <= " << suggest_dt(0.5) << ".";
+    else if (dt > limit)
       os << " The time step dt = " << dt << " is above the stable limit " << limit
          << " of integrator " << integrator_->style_name() << " (stiffest term: " << who
          << ", combined omega_max = " << w << "); rerun with dt <= " << suggest_dt(0.5)

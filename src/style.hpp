@@ -86,7 +86,9 @@ class Style {
   // measured at the last evaluation, which an adaptive step follows (Simulation::omega_now).
   virtual double max_frequency(const Context&) const { return 0.0; }
   virtual bool measures_frequency() const { return false; }
-  virtual double measured_frequency() const { return 0.0; }
+  // Negative: this style measures nothing (a fix without contacts), and its nominal
+  // max_frequency stands for it also where the measured frequencies are trusted alone.
+  virtual double measured_frequency() const { return -1.0; }
 
   // Order within each stage of the schedule (src/schedule.hpp): lower first; equal
   // priorities keep the order the deck added the styles. Family defaults: shells -100,
@@ -285,6 +287,10 @@ class IntegratorStyle : public Style {
   double safety() const { return safety_; }
   // The run sets dt before every step from the measured stiffness (Simulation::omega_now).
   virtual bool adaptive() const { return false; }
+  // With adaptive(): the contacts' measured frequencies stand alone, also below their
+  // nominal estimates, and dt = "auto" may grow up to the stable step of the terms that
+  // measure nothing (bonds, shells, damping) instead of stopping at the nominal step.
+  virtual bool trusts_measured() const { return false; }
 
  protected:
   // The "dt" and "safety" keys every integrator takes.

@@ -13,12 +13,25 @@ class VelocityVerletIntegrator : public IntegratorStyle {
               "set dt before every step to safety * 2 / omega, with omega from the contacts as "
               "they are (several per node, deep overlaps; never above dt)")
         .def(false);
+    s.boolean("trust_measured",
+              "with adaptive: the contacts' measured stiffness alone sets their share of omega, "
+              "also below the nominal estimate (a contact at a tenth of a diameter of overlap), "
+              "so that dt = \"auto\" grows up to the stable step of the terms that measure "
+              "nothing (bonds, damping) while the contacts are soft or absent; no node then "
+              "moves more than safety times a tenth of the shortest rest length per step "
+              "(a contact beginning within a step stays near the nominal overlap; "
+              "docs/performance.md)")
+        .def(false);
     return s;
   }
-  VelocityVerletIntegrator(Simulation&, const ParamValues& p) : adaptive_(p.boolean("adaptive")) {
+  VelocityVerletIntegrator(Simulation&, const ParamValues& p)
+      : adaptive_(p.boolean("adaptive")), trust_measured_(p.boolean("trust_measured")) {
     read_time_step(p);
+    if (trust_measured_ && !adaptive_)
+      throw InputError("integrator 'verlet': trust_measured needs adaptive = true");
   }
   bool adaptive() const override { return adaptive_; }
+  bool trusts_measured() const override { return trust_measured_; }
   double stability_limit() const override { return 2.0; }
   void setup(Simulation&) override {}
   void step(Simulation& sim) override {
@@ -57,7 +70,7 @@ class VelocityVerletIntegrator : public IntegratorStyle {
   }
 
  private:
-  bool adaptive_ = false;
+  bool adaptive_ = false, trust_measured_ = false;
 };
 
 }  // namespace slender

@@ -2,6 +2,7 @@
 // Covers styles/pair/contact_node_edge.cpp, src/contact_law.hpp and the friction of
 // styles/fix/wall_sphere.cpp. (docs/models.md §2.3).
 #include <cmath>
+#include <memory>
 
 #include "contact_law.hpp"
 #include "helpers.hpp"
@@ -412,6 +413,55 @@ TEST(VelocityVerletIntegrator, AdaptiveStepFollowsTheMeasuredContacts) {
   // dt was set from the contacts at the start of the last step
   EXPECT_NEAR(sim.dt, 0.5 * 2.0 / sim.omega_now(), 1e-3 * sim.dt);
   EXPECT_TRUE(sim.nodes().x[0].allFinite());
+}
+
+TEST(VelocityVerletIntegrator, TrustingTheMeasuredContactsLetsTheStepGrowWhileTheyAreSoft) {
+  // the same drop, with the wall's measured stiffness trusted alone: before the node
+  // reaches the wall (no contact) the step is the spring's stable step, above the nominal
+  // "auto" step that counts the wall at a tenth of a diameter of overlap; a fast node is
+  // held to safety x a tenth of the rest length per step (it may meet a contact within the
+  // step); pressed in deep, the step falls below the nominal one as before. The drag,
+  // which measures nothing, keeps its nominal share all along.
+  auto scene = [](bool trust, double y0, double push) {
+    auto sim = std::make_unique<Simulation>(2, 1);
+    sim->verbose = false;
+    sim->add_chain("w", {Vec3(0, y0, 0), Vec3(0.5, y0, 0)}, 1.0, false);
+    sim->add_bond("spring", P({{"k", 100.0}}));
+    sim->add_fix("cavity", "wall/circle",
+                 P({{"radius", 9.0}, {"diameter", 1.0}, {"stiffness", 1e4}, {"damping", 5.0}}));
+    sim->add_fix("drag", "damping/viscous", P({{"gamma", 0.1}}));
+    sim->add_fix("push", "force/constant",
+                 P({{"group", "all"s}, {"force", std::vector<double>{0, push}}}));
+    sim->set_integrator("verlet",
+                        P({{"dt", "auto"s}, {"adaptive", true}, {"trust_measured", trust}}));
+    return sim;
+  };
+  auto slow = scene(true, 2.0, 3.0);
+  slow->run(RunOptions{3, 0, {}});
+  const double nominal = slow->suggest_dt(0.5);
+  EXPECT_EQ(slow->fix("cavity").value("contacts"), 0.0);
+  const double spring_and_drag =
+      std::sqrt(std::pow(slow->bonds()[0]->max_frequency(slow->context()), 2) +
+                std::pow(slow->fix("drag").max_frequency(slow->context()), 2));
+  const double cap = 0.5 * 2.0 / spring_and_drag;
+  EXPECT_NEAR(slow->dt, cap, 1e-12 * cap);
+  EXPECT_GT(slow->dt, 1.2 * nominal) << "the step did not grow while no contact was measured";
+  auto floor = scene(false, 2.0, 3.0);
+  floor->run(RunOptions{3, 0, {}});
+  EXPECT_DOUBLE_EQ(floor->dt, nominal) << "without trust_measured the nominal step is the most";
+  auto fast = scene(true, 2.0, 300.0);
+  fast->run(RunOptions{3, 0, {}});
+  const double v = fast->nodes().v[0].norm(), approach = 0.5 * 0.1 * 0.5;
+  EXPECT_LT(fast->dt, 0.5 * cap);
+  EXPECT_GT(fast->dt * v, 0.5 * approach);  // the bound, not something else, set the step
+  EXPECT_LT(fast->dt * v, 1.5 * approach);  // (v grew by a dt within the last step)
+  auto pressed = scene(true, 8.0, 300.0);
+  pressed->run(RunOptions{20000, 0, {}});
+  EXPECT_GT(pressed->fix("cavity").value("contacts"), 0.0);
+  EXPECT_LT(pressed->dt, 0.9 * nominal) << "the trusted step did not follow the deep contact";
+  EXPECT_TRUE(pressed->nodes().x[0].allFinite());
+  EXPECT_THROW(Simulation(2, 1).set_integrator("verlet", P({{"trust_measured", true}})),
+               InputError);
 }
 
 // A diameter that reaches past the excluded neighbours puts a straight wire at rest in

@@ -88,8 +88,11 @@ function M.build(p)
   if q then
     sim:integrator("gear", { values = tonumber(q) or 6, dt = slender.var("dt", "auto") })
   elseif integrator == "verlet" then
+    -- -v trust_measured=true: the contacts' measured stiffness alone (also below its
+    -- nominal estimate) sets their share of the step (docs/performance.md)
     sim:integrator("verlet", { dt = slender.var("dt", "auto"), safety = slender.var("safety", 0.7),
-                               adaptive = slender.var("adaptive", true) })
+                               adaptive = slender.var("adaptive", true),
+                               trust_measured = slender.var("trust_measured", false) })
   else
     sim:integrator(integrator, { dt = slender.var("dt", "auto") })
   end

@@ -28,31 +28,14 @@ import argparse
 import csv
 import math
 import os
+import sys
 
 import numpy as np
 
-
-def read(paths):
-    rows = []
-    for p in paths:
-        with open(p) as fh:
-            for r in csv.DictReader(fh):
-                rows.append({k: float(v) for k, v in r.items() if v not in ("", None)})
-    return rows
-
-
-def linfit(x, y):
-    """Least squares y = a + b x; returns b, a, stderr(b), r^2."""
-    x, y = np.asarray(x), np.asarray(y)
-    A = np.vstack([np.ones_like(x), x]).T
-    coef, res, *_ = np.linalg.lstsq(A, y, rcond=None)
-    a, b = coef
-    resid = y - (a + b * x)
-    n = len(x)
-    s2 = resid @ resid / max(n - 2, 1)
-    sb = math.sqrt(s2 / max(((x - x.mean()) ** 2).sum(), 1e-300))
-    ss = ((y - y.mean()) ** 2).sum()
-    return b, a, sb, 1 - (resid @ resid) / ss if ss > 0 else 1.0
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+# the measures live in the package; the names stay importable from here
+from slender.crumple import (first_crossing, first_growth, linfit, power_law, read,  # noqa: E402,F401
+                             read_run, spiral_model)
 
 
 def plot(path, series, xlabel, ylabel, logx=True, logy=True, title=""):
@@ -73,17 +56,6 @@ def plot(path, series, xlabel, ylabel, logx=True, logy=True, title=""):
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
-
-
-def power_law(rows, xkey, ykey, lo, hi):
-    pts = [(r[xkey], r[ykey]) for r in rows
-           if r.get(ykey, 0) > 0 and lo <= r.get(xkey, 0) <= hi]
-    if len(pts) < 3:
-        return None
-    x, y = zip(*pts)
-    b, a, sb, r2 = linfit(np.log(x), np.log(y))
-    return {"exponent": b, "stderr": sb, "prefactor": math.exp(a), "r2": r2, "n": len(pts),
-            "x": np.array(x), "y": np.array(y)}
 
 
 def mode_loops(a):
@@ -146,18 +118,6 @@ def mode_force(a):
     print("wrote", a.out + ".csv", a.out + ".png")
 
 
-def spiral_model(phi, R, d, YI, printed):
-    """Bending energy of the spiral model (docs/models.md §2.8) up to the constant C."""
-    Rc = 0.5 * (d + np.sqrt(d * d + 4 * R * R * (1 - phi)))            # (3.4)
-    core = 4 * math.pi * YI / Rc                                        # E_c as printed
-    if printed:
-        phimax = math.pi * (R - Rc) / d                                 # (3.7)
-        Es = YI / d * (np.log(d * phimax + math.pi * Rc) - np.log(math.pi * Rc))  # (3.10)
-    else:
-        Es = math.pi * YI / (2 * d) * np.log(R / Rc)                    # corrected
-    return core + 2 * Es
-
-
 def mode_spiral(a):
     rows = [r for r in read(a.files) if "energy.bend" in r]
     phi = np.array([r["feed.phi"] for r in rows])
@@ -194,28 +154,6 @@ def mode_spiral(a):
     plot(a.out + ".png", series, "packing density phi", "bending energy", logx=False, logy=False,
          title=f"spiral phase, R = {a.radius:g} d")
     print("wrote", a.out + ".csv", a.out + ".png")
-
-
-def read_run(spec):
-    """One run's thermo rows from 'a.csv+b.csv', ordered by step, repeated steps once."""
-    by_step = {}
-    for r in read(spec.split("+")):
-        by_step[r["step"]] = r
-    return [by_step[k] for k in sorted(by_step)]
-
-
-def first_crossing(phi, F, level):
-    i = np.nonzero(F > level)[0]
-    return phi[i[0]] if len(i) else float("nan")
-
-
-def first_growth(phi, F, factor, dphi):
-    """First phi where F exceeds factor times its value at phi - dphi (docs/models.md §2.4)."""
-    for i in range(len(phi)):
-        j = np.searchsorted(phi, phi[i] - dphi)
-        if phi[i] - phi[j] <= dphi and F[j] > 0 and F[i] > factor * F[j]:
-            return phi[i]
-    return float("nan")
 
 
 def mode_jam(a):

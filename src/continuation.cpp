@@ -24,9 +24,10 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
     throw InputError("continuation: load must name a fix or a shell, and there is no style '" +
                      opt.load + "'");
   if (!fix->set_load_factor(1.0))
-    throw InputError("continuation: " + std::string(fix->family_name()) + " '" + opt.load + "' (" +
-                     fix->style_name() +
-                     ") has no load to scale (force/constant, moment2d and koiter have)");
+    throw InputError(
+        "continuation: " + std::string(fix->family_name()) + " '" + opt.load + "' (" +
+        fix->style_name() +
+        ") has no load to scale (force/constant, moment2d, prescribe and koiter have)");
   if (!(opt.ds > 0) || !(opt.ds_max >= opt.ds) || !(opt.ds_min > 0) || !(opt.ds_min <= opt.ds))
     throw InputError("continuation: the steps need 0 < ds_min <= ds <= ds_max, got ds_min = " +
                      g6(opt.ds_min) + ", ds = " + g6(opt.ds) + ", ds_max = " + g6(opt.ds_max));
@@ -56,12 +57,15 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
   set_lambda(lambda);
   sim.compute_forces();
   // q = df/dlambda at the current state (a follower load, e.g. an end moment, turns with
-  // the nodes): the forces at lambda + 1 less those at lambda, the state's forces restored
+  // the nodes; a prescribed motion moves the held nodes, on which the forces depend
+  // nonlinearly): a forward difference over a small step of lambda, the state's forces
+  // restored (exact to round-off for a load linear in lambda)
   auto load_vector = [&] {
     const Eigen::VectorXd f0 = sys.forces();
-    set_lambda(lambda + 1.0);
+    const double eps = 1e-6 * std::max(1.0, std::abs(lambda));
+    set_lambda(lambda + eps);
     sim.compute_forces();
-    Eigen::VectorXd dq = sys.forces() - f0;
+    Eigen::VectorXd dq = (sys.forces() - f0) / eps;
     set_lambda(lambda);
     sim.compute_forces();
     return dq;

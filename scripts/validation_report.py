@@ -216,6 +216,15 @@ CASES = [
                    "whole continuation path, and back at the root at M = 2 pi EI / L (error per "
                    "length L)",
          source="pure bending; docs/models.md §9.5"),
+    dict(id="continuation_tip", family="wire 2D",
+         title="Displacement control: a cantilever's tip driven down by a prescribed motion",
+         deck="validation/continuation.lua", fixed={"case": "tip"},
+         ladder=("nodes", [11, 21, 41, 81], [11, 21]), h=nodes_h,
+         integrators=(["none"], ["none"]), order=1.8,
+         reference="reaction of the held tip at w < 0.01 L against the Euler-Bernoulli tip force "
+                   "3 EI w / L^3 (fix prescribe walked by sim:continuation to w = 0.3 L, no "
+                   "critical point on the way)",
+         source="Euler-Bernoulli cantilever; docs/models.md §9.8"),
     dict(id="plate_ss", family="shell", title="Square plate under uniform load, simply supported",
          deck="validation/plate_load.lua", fixed={"support": "simply_supported"},
          ladder=("n", [8, 16, 32], [8, 16]), h=lambda n: 1.0 / int(n),

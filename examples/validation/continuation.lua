@@ -4,11 +4,15 @@
 -- case=column loads a straight clamped-free 2D column and finds Euler's bifurcation
 -- P_cr = pi^2 EI / (4 L^2) from the count of negative pivots of the stiffness matrix, and
 -- with -v branch=true follows the buckled branch against the elastica; -v case=roll rolls a
--- clamped wire into a full circle by an end moment (fix moment2d) against the exact arcs.
+-- clamped wire into a full circle by an end moment (fix moment2d) against the exact arcs;
+-- -v case=tip drives the cantilever's tip down by a prescribed motion (fix prescribe,
+-- displacement control, §9.8) to w = 0.3 L, its reaction at small w against the
+-- Euler-Bernoulli 3 EI w / L^3.
 -- Expected run time: well under a second for either case (defaults).
 --   slender continuation.lua -v case=column -v nodes=81
 local case = slender.var("case", "truss")
-assert(case == "truss" or case == "column" or case == "roll", "case must be truss, column or roll")
+assert(case == "truss" or case == "column" or case == "roll" or case == "tip",
+       "case must be truss, column, roll or tip")
 local check = slender.var("check")
 local fast = slender.var("fast", false)  -- the suite's fast mode: a coarser column
 local t0 = slender.clock()
@@ -52,6 +56,38 @@ if case == "truss" then
     assert(#limits == 2, "expected two limit points, found " .. #limits)
     assert(err < check and worst < check,
            string.format("limit error %.3e, path error %.3e exceed %.3e", err, worst, check))
+  end
+elseif case == "tip" then
+  -- the cantilever of cantilever2d.lua (EI = 1, EA = 1e5, L = 1), its tip's y held on the
+  -- path w = lambda 0.3 (x free); at the first points (w < 0.01 L) the reaction is the
+  -- linear tip force 3 EI w / L^3, the discrete wire's error falling as h^2
+  local N = slender.var("nodes", fast and 21 or 41)
+  local h = 1.0 / (N - 0.5)
+  local sim = slender.simulation { dimension = 2, seed = 1 }
+  sim:wire { name = "beam", nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
+  sim:bond("spring", { k = 1e5 / h })
+  sim:bond("bend2d", { k = 1 / h })
+  sim:group("base", { chain = "beam", nodes = { 1, 2 } })
+  sim:group("tip", { chain = "beam", nodes = { -1 } })
+  sim:fix("clamp", "clamp", { group = "base" })
+  sim:fix("drive", "prescribe", { group = "tip", displacement = { 0, -0.3 }, components = "y" })
+  local linear_error, events, last = nil, 0, 0.0
+  local points, lambda = sim:continuation { load = "drive", ds = 0.002, ds_max = 0.05, lambda_max = 1,
+    points = 500, ftol = 1e-8, callback = function(s, p)
+      local w = 0.3 * p.lambda
+      if p.event then events = events + 1 end
+      if p.index > 0 and w < 0.01 and not linear_error then
+        linear_error = math.abs(-s:value("drive.reaction_y") / (3 * w) - 1)
+      end
+      if p.lambda <= 1 then last = p.lambda end
+    end }
+  slender.result { case = "tip", nodes = N, points = points, lambda = lambda, rel_error = linear_error,
+    events = events, last_lambda = last, wall_s = slender.clock() - t0 }
+  if check then
+    assert(events == 0, "displacement control crossed " .. events .. " critical points")
+    assert(last > 0.9, "the path stopped at lambda = " .. last)
+    assert(linear_error and linear_error < check,
+           string.format("reaction error %s exceeds %.3e", tostring(linear_error), check))
   end
 elseif case == "roll" then
   -- the cantilever of cantilever2d.lua under an end moment lambda M0, M0 = 2 pi EI / L: pure

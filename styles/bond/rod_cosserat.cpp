@@ -86,6 +86,12 @@ class CosseratRodBond : public ChainBondStyle {
   }
   const char* energy_category() const override { return "bend"; }
 
+  // new edges get their frames before the first evaluation, so that a fix set up after
+  // the bonds (prescribe with frames) finds them
+  void setup(Context& sim) override {
+    ChainBondStyle::setup(sim);  // binds the chains
+    for (auto* c : chains(sim)) bind_edges(sim, *c);
+  }
   double compute(Context& sim) override {
     if (tangent_) return compute_tangent(sim);
     const auto& x = sim.nodes().x;

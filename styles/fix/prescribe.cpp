@@ -5,11 +5,15 @@
 // times a ramp from 0 to 1 over `duration` of a dynamic run. The fix measures the
 // reaction, the force it exerts to keep the nodes on that path: minus the sum of the
 // other styles' forces on the held components, read before the core zeroes them.
+// With `frames`, the rod frames stored at the group's nodes (bond rod/cosserat keeps an
+// edge's quaternion at its first node) turn with the same rotation and are held too:
+// q(lambda) = r(lambda angle, axis) o Q, an end twisted by a prescribed angle.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
 #include "context.hpp"
+#include "quaternion_rod.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -34,6 +38,11 @@ class PrescribeFix : public FixStyle {
         .length(2, 3);
     s.string("components", "position components held on the path, any of x, y, z")
         .def(std::string("xyz"));
+    s.boolean("frames",
+              "also turn and hold the rod frames stored at the group's nodes (rod/cosserat: "
+              "an edge's frame sits at its first node, so a chain end's group names its last "
+              "two nodes): an end twisted by `angle` about its axis")
+        .def(false);
     s.real("duration",
            "dynamic runs: the motion ramps smoothly (3 tau^2 - 2 tau^3) from 0 to the load "
            "factor over this time from when the fix was added (0: at once; leave 0 for "
@@ -55,6 +64,7 @@ class PrescribeFix : public FixStyle {
         center_(p.vec3("center")),
         duration_(p.real("duration")),
         t0_(sim.time()),
+        frames_(p.boolean("frames")),
         ctx_(&sim) {
     for (char ch : p.str("components")) {
       if (ch == 'x')
@@ -84,11 +94,27 @@ class PrescribeFix : public FixStyle {
   int priority() const override { return kMeasuresForces; }
   void setup(Context& sim) override {
     hold(sim);
+    if (frames_ && !rod_) {
+      for (auto& c : sim.extra_coordinates())
+        if (c->name == "rod.q") rod_ = c.get();
+      if (!rod_)
+        throw InputError(
+            "fix 'prescribe': frames = true needs a rod with frames (bond "
+            "rod/cosserat)");
+      // the rod gave its edges their frames in its setup, before this one (bonds are set up
+      // before fixes): the reference frames are those, taken once (a checkpoint brings its own)
+      if (ref_q_.empty())
+        for (int i : nodes_) ref_q_.push_back((*rod_->q)[i]);
+    }
+    if (rod_)
+      for (int i : nodes_) (*rod_->fixed)[i] = 1;
     place(sim, sim.time(), false);
   }
   void detach(Context& sim) override {
     if (auto* mask = sim.held_components_if_any())
       for (int i : nodes_) (*mask)[i] &= ~bits_;
+    if (rod_)
+      for (int i : nodes_) (*rod_->fixed)[i] = 0;
   }
   // The nodes move at once: a continuation evaluates the forces right after (bonds and
   // pairs run before this fix, so a move at post_force would come one evaluation late).
@@ -111,10 +137,18 @@ class PrescribeFix : public FixStyle {
   void save_state(StateMap& st) const override {
     st["t0"] = {t0_};
     st["load_factor"] = {load_factor_};
+    std::vector<double> q;
+    for (const Vec4& r : ref_q_) q.insert(q.end(), {r[0], r[1], r[2], r[3]});
+    st["ref_frames"] = q;
   }
   void load_state(const StateMap& st) override {
     t0_ = saved_array(st, "t0", 1)[0];
     load_factor_ = saved_array(st, "load_factor", 1)[0];
+    if (auto it = st.find("ref_frames"); it != st.end() && it->second.size() == 4 * nodes_.size()) {
+      ref_q_.clear();
+      for (size_t k = 0; k + 3 < it->second.size(); k += 4)
+        ref_q_.emplace_back(it->second[k], it->second[k + 1], it->second[k + 2], it->second[k + 3]);
+    }
     placed_ = false;
   }
   double value(const std::string& key) const override {
@@ -138,6 +172,13 @@ class PrescribeFix : public FixStyle {
     const double tau = std::clamp((t - t0_) / duration_, 0.0, 1.0);
     return tau * tau * (3.0 - 2.0 * tau);
   }
+  // the reference frame k turned by s angle about the axis (scalar-first quaternions,
+  // the world-frame rotation applied after the frame's own)
+  Vec4 turned(size_t k, double s) const {
+    const double h = 0.5 * s * angle_;
+    const Vec3 a = std::sin(h) * axis_;
+    return qrod::mul(Vec4(std::cos(h), a.x(), a.y(), a.z()), ref_q_[k]);
+  }
   Vec3 target(size_t k, double s) const {
     const Eigen::AngleAxisd turn(s * angle_, axis_);
     return center_ + turn * (ref_[k] - center_) + s * u_;
@@ -159,6 +200,12 @@ class PrescribeFix : public FixStyle {
           n.x[i][c] = x[c];
           n.v[i][c] = v[c];
         }
+      if (rod_ && k < ref_q_.size()) {
+        const Vec4 q = turned(k, factor_);
+        (*rod_->v)[i] =
+            moving && sim.dt() > 0 ? Vec4((q - turned(k, before)) / sim.dt()) : Vec4::Zero();
+        (*rod_->q)[i] = q;
+      }
     }
     placed_ = true;
   }
@@ -170,6 +217,9 @@ class PrescribeFix : public FixStyle {
   double angle_;
   Vec3 axis_, center_;
   double duration_, t0_;
+  bool frames_;
+  Coordinates* rod_ = nullptr;  // the frames turned with the group (frames = true)
+  std::vector<Vec4> ref_q_;     // their reference quaternions
   int bits_ = 0;
   double load_factor_ = 1.0, factor_ = 0.0;
   bool placed_ = false;

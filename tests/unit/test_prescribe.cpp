@@ -6,6 +6,7 @@
 #include "context.hpp"
 #include "continuation.hpp"
 #include "helpers.hpp"
+#include "quaternion_rod.hpp"
 
 using namespace slender;
 using namespace slender::test;
@@ -127,6 +128,54 @@ TEST(PrescribeFix, RotatesAGroupAboutAnAxisAndRampsInADynamicRun) {
   EXPECT_NEAR(sim.nodes().v[2].norm(), 0.0, 1e-12);
   // the middle node is free: the springs pull it along, it stays finite
   EXPECT_TRUE(sim.nodes().x[1].allFinite());
+}
+
+TEST(PrescribeFix, TwistsARodEndByAnAngleAndHoldsItsFrames) {
+  // a straight Cosserat rod along x, its first edges held (angle 0) and its last edge's
+  // frame turned by Theta about the axis: relaxed, the twist is uniform over the hinges
+  // between the held edges, E = m (l / 2) GJ (2 sin(Theta / 2m) / l)^2 for m hinges of
+  // length l (the discrete torsion of docs/models.md §4.3), -> GJ Theta^2 / 2 L
+  const int n = 12;
+  const double l = 0.5, GJ = 1.5, theta = 1.2;
+  Simulation sim(3, 1);
+  sim.verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < n; ++i) pts.emplace_back(l * i, 0, 0);
+  sim.add_chain("r", pts, 1.0, false);
+  sim.add_bond("spring", P({{"k", 400.0}}));
+  sim.add_bond("rod/cosserat",
+               P({{"YI", 2.0}, {"GJ", GJ}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
+  sim.set_group("root", {0, 1});
+  sim.set_group("end", {n - 2, n - 1});
+  sim.add_fix("hold", "prescribe", P({{"group", std::string("root")}, {"frames", true}}));
+  sim.add_fix("twist", "prescribe",
+              P({{"group", std::string("end")},
+                 {"angle", theta},
+                 {"axis", std::vector<double>{1.0, 0.0, 0.0}},
+                 {"frames", true}}));
+  const long steps = sim.minimize(1e-9, 400000);
+  EXPECT_LT(steps, 400000);
+  // the root group {0, 1} holds the frames of edges 0 and 1, the end group those of the
+  // last edge n - 2 (and node n - 1's unused slot): m = n - 3 hinges between edges 1, n - 2
+  const int m = n - 3;
+  const double discrete = m * (l / 2) * GJ * std::pow(2 * std::sin(theta / (2 * m)) / l, 2);
+  EXPECT_NEAR(sim.energies().at("twist"), discrete, 1e-6 * discrete);
+  EXPECT_NEAR(discrete, GJ * theta * theta / (2 * m * l), 2e-3 * discrete);
+  // the end frame is the root's turned by Theta about the axis (d3 along it), and the
+  // positions did not move
+  auto& q = sim.coordinates("rod.q").q->values();
+  EXPECT_NEAR((qrod::d3(q[n - 2]) - Vec3(1, 0, 0)).norm(), 0.0, 1e-9);
+  const Vec3 a0 = qrod::d1(q[0]), a1 = qrod::d1(q[n - 2]);
+  EXPECT_NEAR(std::atan2(a0.cross(a1).dot(Vec3(1, 0, 0)), a0.dot(a1)), theta, 1e-9);
+  for (int i = 0; i < n; ++i) EXPECT_NEAR((sim.nodes().x[i] - pts[i]).norm(), 0.0, 1e-6);
+  // without a rod, frames = true is refused at the first evaluation
+  Simulation bare(3, 1);
+  bare.verbose = false;
+  bare.add_chain("w", {Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1.0, false);
+  bare.add_bond("spring", P({{"k", 1.0}}));
+  bare.set_group("one", {1});
+  bare.add_fix("t", "prescribe", P({{"group", std::string("one")}, {"frames", true}}));
+  EXPECT_THROW(bare.compute_forces(), InputError);
 }
 
 TEST(PrescribeFix, RefusesBadInput) {

@@ -17,6 +17,20 @@ local check = slender.var("check")
 local fast = slender.var("fast", false)  -- the suite's fast mode: a coarser column
 local t0 = slender.clock()
 
+-- the clamped cantilever of cantilever2d.lua (EI = 1, EA = 1e5, L = 1 from the staggered
+-- clamp) as the chain `name` of N + 1 nodes: the tip, roll and column cases
+local function cantilever(name)
+  local N = slender.var("nodes", fast and 21 or 41)
+  local h = 1.0 / (N - 0.5)
+  local sim = slender.simulation { dimension = 2, seed = 1 }
+  sim:wire { name = name, nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
+  sim:bond("spring", { k = 1e5 / h })
+  sim:bond("bend2d", { k = 1 / h })
+  sim:group("base", { chain = name, nodes = { 1, 2 } })
+  sim:fix("clamp", "clamp", { group = "base" })
+  return sim, N
+end
+
 if case == "truss" then
   -- supports at (+-a, 0), apex at (0, h), springs k; the apex load lambda points down.
   -- Along the path P(w) = 2 k (L0 - L) (h - w) / L, L = sqrt(a^2 + (h - w)^2).
@@ -61,15 +75,8 @@ elseif case == "tip" then
   -- the cantilever of cantilever2d.lua (EI = 1, EA = 1e5, L = 1), its tip's y held on the
   -- path w = lambda 0.3 (x free); at the first points (w < 0.01 L) the reaction is the
   -- linear tip force 3 EI w / L^3, the discrete wire's error falling as h^2
-  local N = slender.var("nodes", fast and 21 or 41)
-  local h = 1.0 / (N - 0.5)
-  local sim = slender.simulation { dimension = 2, seed = 1 }
-  sim:wire { name = "beam", nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
-  sim:bond("spring", { k = 1e5 / h })
-  sim:bond("bend2d", { k = 1 / h })
-  sim:group("base", { chain = "beam", nodes = { 1, 2 } })
+  local sim, N = cantilever("beam")
   sim:group("tip", { chain = "beam", nodes = { -1 } })
-  sim:fix("clamp", "clamp", { group = "base" })
   sim:fix("drive", "prescribe", { group = "tip", displacement = { 0, -0.3 }, components = "y" })
   local linear_error, events, last = nil, 0, 0.0
   local points, lambda = sim:continuation { load = "drive", ds = 0.002, ds_max = 0.05, lambda_max = 1,
@@ -93,14 +100,7 @@ elseif case == "roll" then
   -- the cantilever of cantilever2d.lua under an end moment lambda M0, M0 = 2 pi EI / L: pure
   -- bending into an arc of curvature kappa = lambda M0 / EI, the tip at
   -- (sin(kappa L) / kappa, (1 - cos(kappa L)) / kappa); the circle closes at lambda = 1
-  local N = slender.var("nodes", fast and 21 or 41)
-  local h = 1.0 / (N - 0.5)
-  local sim = slender.simulation { dimension = 2, seed = 1 }
-  sim:wire { name = "beam", nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
-  sim:bond("spring", { k = 1e5 / h })
-  sim:bond("bend2d", { k = 1 / h })
-  sim:group("base", { chain = "beam", nodes = { 1, 2 } })
-  sim:fix("clamp", "clamp", { group = "base" })
+  local sim, N = cantilever("beam")
   sim:fix("roll", "moment2d", { chain = "beam", moment = 2 * math.pi })
   local worst, last, closed = 0.0, 0.0, nil
   local points, lambda = sim:continuation { load = "roll", ds = 0.05, ds_max = 0.2, lambda_max = 1, points = 500,
@@ -127,15 +127,8 @@ elseif case == "roll" then
   end
 else
   -- the clamped cantilever of cantilever2d.lua (EI = 1, EA = 1e5, L = 1, staggered clamp)
-  local N = slender.var("nodes", fast and 21 or 41)
-  local h = 1.0 / (N - 0.5)
-  local sim = slender.simulation { dimension = 2, seed = 1 }
-  sim:wire { name = "column", nodes = N + 1, spacing = h, start = { -h / 2, 0 }, direction = { 1, 0 }, mass = h }
-  sim:bond("spring", { k = 1e5 / h })
-  sim:bond("bend2d", { k = 1 / h })
-  sim:group("base", { chain = "column", nodes = { 1, 2 } })
+  local sim, N = cantilever("column")
   sim:group("tip", { chain = "column", nodes = { -1 } })
-  sim:fix("clamp", "clamp", { group = "base" })
   sim:fix("load", "force/constant", { group = "tip", force = { -1, 0 } })
   local pcr = math.pi ^ 2 / 4
   -- -v branch=true switches onto the buckled branch at P_cr and follows it to a tip

@@ -3,6 +3,7 @@
 // a clamped rotation is the direction of the end edge, so `rotation = true` also
 // clamps the chain neighbour of every chain end in the group.
 #include "context.hpp"
+#include "held_components.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -21,18 +22,7 @@ class ClampFix : public FixStyle {
     return s;
   }
   ClampFix(Context& sim, const ParamValues& p) {
-    int bits = 0;
-    for (char ch : p.str("components")) {
-      if (ch == 'x')
-        bits |= kMaskX;
-      else if (ch == 'y')
-        bits |= kMaskY;
-      else if (ch == 'z')
-        bits |= kMaskZ;
-      else
-        throw InputError("fix 'clamp': components must use only x, y, z, got \"" +
-                         p.str("components") + "\"");
-    }
+    const int bits = held_component_bits(p.str("components"), "fix 'clamp'");
     auto nodes = sim.group(p.str("group"));
     auto& mask = sim.held_components();
     bits_ = bits;

@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "context.hpp"
+#include "held_components.hpp"
 #include "quaternion_rod.hpp"
 #include "registry.hpp"
 
@@ -66,17 +67,7 @@ class PrescribeFix : public FixStyle {
         t0_(sim.time()),
         frames_(p.boolean("frames")),
         ctx_(&sim) {
-    for (char ch : p.str("components")) {
-      if (ch == 'x')
-        bits_ |= kMaskX;
-      else if (ch == 'y')
-        bits_ |= kMaskY;
-      else if (ch == 'z')
-        bits_ |= kMaskZ;
-      else
-        throw InputError("fix 'prescribe': components must use only x, y, z, got \"" +
-                         p.str("components") + "\"");
-    }
+    bits_ = held_component_bits(p.str("components"), "fix 'prescribe'");
     if (angle_ != 0.0 && !(axis_.norm() > 0))
       throw InputError("fix 'prescribe': a rotation needs a nonzero axis");
     if (axis_.norm() > 0) axis_.normalize();

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
 #include "nodes.hpp"
 #include "params.hpp"
+#include "threads.hpp"
 
 namespace slender {
 
@@ -50,22 +52,30 @@ class NodeStiffness {
   Part& part(int tid) { return parts_[static_cast<std::size_t>(tid)]; }
   void add(int i, double k) { parts_[0].add(i, k); }
   // Closes one evaluation: the measured omega, and the row sums cleared for the next.
-  // The threads' row sums are added in thread order (deterministic for a thread count).
+  // The threads' row sums are added in thread order (deterministic for a thread count),
+  // on the threads' node ranges (a serial pass would pull every part onto one core).
   void finish(const std::vector<double>& mass) {
     std::vector<double>& k0 = parts_[0].k_;
-    for (std::size_t t = 1; t < used_; ++t) {
-      std::vector<double>& kt = parts_[t].k_;
-      for (std::size_t u = 0; u < kt.size(); ++u) {
-        k0[u] += kt[u];
-        kt[u] = 0.0;
-      }
-    }
-    double w2 = 0.0;
-    for (std::size_t u = 0; u < k0.size(); ++u) {
-      if (k0[u] != 0.0) w2 = std::max(w2, k0[u] / mass[u]);
-      k0[u] = 0.0;
-    }
-    omega_ = std::sqrt(w2);
+    std::array<double, kMaxThreads> w2{};
+    const int T = parallel_ranges(static_cast<int>(used_), k0.size(),
+                                  [&](int tid, std::size_t begin, std::size_t end) {
+                                    double m = 0.0;
+                                    for (std::size_t t = 1; t < used_; ++t) {
+                                      std::vector<double>& kt = parts_[t].k_;
+                                      for (std::size_t u = begin; u < end; ++u) {
+                                        k0[u] += kt[u];
+                                        kt[u] = 0.0;
+                                      }
+                                    }
+                                    for (std::size_t u = begin; u < end; ++u) {
+                                      if (k0[u] != 0.0) m = std::max(m, k0[u] / mass[u]);
+                                      k0[u] = 0.0;
+                                    }
+                                    w2[static_cast<std::size_t>(tid)] = m;
+                                  });
+    double m = 0.0;
+    for (int t = 0; t < T; ++t) m = std::max(m, w2[static_cast<std::size_t>(t)]);
+    omega_ = std::sqrt(m);
   }
   double omega() const { return omega_; }
   void set_omega(double w) { omega_ = w; }

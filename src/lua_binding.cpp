@@ -324,6 +324,14 @@ int l_simulation(lua_State* L) {
                                           static_cast<std::uint64_t>(p.integer("seed")));
   sim->verbose = !(p.boolean("quiet") || context(L)->opt.quiet);
   sim->set_threads(deck_threads(context(L)->opt));
+  if (const char* env = std::getenv("SLENDER_THREADS_MIN_NODES")) {
+    char* end = nullptr;
+    const long n = std::strtol(env, &end, 10);
+    if (end == env || *end != '\0' || n < 0)
+      throw InputError(std::string("SLENDER_THREADS_MIN_NODES must be a count >= 0, got '") + env +
+                       "'");
+    sim->set_threads_min_nodes(static_cast<std::size_t>(n));
+  }
   if (context(L)->opt.catch_signals) sim->watch_interrupt(&g_stop_signal);
   auto* box = static_cast<SimBox*>(lua_newuserdatauv(L, sizeof(SimBox), 1));
   box->sim = sim.release();

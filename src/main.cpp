@@ -16,7 +16,8 @@ namespace {
 void usage() {
   std::printf(
       "usage: slender DECK.lua [-v name=value ...] [-t N] [-q] [-log FILE] [--inventory FILE]\n"
-      "       (-t: threads of the force kernels, default OMP_NUM_THREADS or 1;\n"
+      "       (-t: threads of the force kernels, default OMP_NUM_THREADS or 1; scenes of\n"
+      "        fewer than 2000 nodes run on one (SLENDER_THREADS_MIN_NODES moves that);\n"
       "        -log: a copy of the console, default log.slender here, 'none' for none;\n"
       "        --inventory appends what each simulation held, one JSON line each)\n"
       "       slender --list-styles\n"

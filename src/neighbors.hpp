@@ -10,10 +10,12 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <vector>
 
 #include "nodes.hpp"
+#include "threads.hpp"
 
 namespace slender {
 
@@ -32,8 +34,12 @@ class NeighborService {
     req_.push_back(Request{owner, skin, every});
     return static_cast<int>(req_.size()) - 1;
   }
-  // A new force evaluation begins (Simulation::compute_forces): the next query decides anew.
-  void begin_evaluation() { decided_ = false; }
+  // A new force evaluation on `threads` threads begins (Simulation::compute_forces): the
+  // next query decides anew.
+  void begin_evaluation(int threads = 1) {
+    decided_ = false;
+    threads_ = threads;
+  }
   // Every list is rebuilt at the next query (a style re-bound its chains at a run's start
   // or after a chain grew, a guard rollback, a checkpoint read).
   void invalidate() {
@@ -77,8 +83,14 @@ class NeighborService {
     }
     if (!all && half_skin2 < std::numeric_limits<double>::infinity()) {
       ++scans_;
-      for (std::size_t i = 0; i < x.size() && !all; ++i)
-        all = (x[i] - x_[i]).squaredNorm() > half_skin2;
+      // on the threads' node ranges, as the kernels take them (threads.hpp)
+      std::array<char, kMaxThreads> moved{};
+      const int T = parallel_ranges(threads_, x.size(), [&](int tid, std::size_t b, std::size_t e) {
+        bool any = false;
+        for (std::size_t i = b; i < e && !any; ++i) any = (x[i] - x_[i]).squaredNorm() > half_skin2;
+        moved[static_cast<std::size_t>(tid)] = any;
+      });
+      for (int t = 0; t < T; ++t) all = all || moved[static_cast<std::size_t>(t)];
     }
     if (!all) return;
     ++generation_;
@@ -92,6 +104,7 @@ class NeighborService {
   long generation_ = 0;
   long scans_ = 0;
   bool decided_ = false, force_ = false, rebuilt_now_ = false;
+  int threads_ = 1;
 };
 
 }  // namespace slender

@@ -334,34 +334,45 @@ Coordinates& Simulation::coordinates(const std::string& name) {
 
 void Simulation::compute_forces() {
   if (schedule_dirty_) build_schedule();
-  neighbors_.begin_evaluation();
-  for (auto& f : nodes_.f) f.setZero();
-  for (auto& c : coords_)
-    for (auto& f : c->f->values()) f.setZero();
+  neighbors_.begin_evaluation(threads());
+  // The passes over every node take the threads' node ranges of the kernels and the
+  // integrator (threads.hpp): a serial pass here would pull the other cores' halves of
+  // the force array over and back at every step.
+  const int T = threads();
+  const size_t N = nodes_.f.size();
+  parallel_ranges(T, N, [&](int, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) nodes_.f[i].setZero();
+    for (auto& c : coords_) {
+      auto& f = c->f->values();
+      for (size_t i = begin; i < std::min(end, f.size()); ++i) f[i].setZero();
+    }
+  });
   for (auto& [k, e] : energy_) e = 0.0;
   schedule_.forces(*this, energy_);
   // the constrain stage
-  if (dof_mask_) {
-    auto& m = dof_mask_->values();
-    for (size_t i = 0; i < m.size(); ++i)
-      if (m[i])
-        for (int c = 0; c < 3; ++c)
-          if (m[i] & (1 << c)) nodes_.f[i][c] = 0.0;
-  }
-  if (dim_ == 2)
-    for (auto& f : nodes_.f) f.z() = 0.0;
-  for (auto& c : coords_) {
-    auto& f = c->f->values();
-    auto& q = c->q->values();
-    auto& fixed = c->fixed->values();
-    for (size_t i = 0; i < f.size(); ++i) {
-      if (fixed[i]) {
-        f[i].setZero();
-      } else if (c->unit) {
-        f[i] -= (f[i].dot(q[i]) / q[i].squaredNorm()) * q[i];  // tangent to |q| = 1
+  parallel_ranges(T, N, [&](int, size_t begin, size_t end) {
+    if (dof_mask_) {
+      auto& m = dof_mask_->values();
+      for (size_t i = begin; i < std::min(end, m.size()); ++i)
+        if (m[i])
+          for (int c = 0; c < 3; ++c)
+            if (m[i] & (1 << c)) nodes_.f[i][c] = 0.0;
+    }
+    if (dim_ == 2)
+      for (size_t i = begin; i < end; ++i) nodes_.f[i].z() = 0.0;
+    for (auto& c : coords_) {
+      auto& f = c->f->values();
+      auto& q = c->q->values();
+      auto& fixed = c->fixed->values();
+      for (size_t i = begin; i < std::min(end, f.size()); ++i) {
+        if (fixed[i]) {
+          f[i].setZero();
+        } else if (c->unit) {
+          f[i] -= (f[i].dot(q[i]) / q[i].squaredNorm()) * q[i];  // tangent to |q| = 1
+        }
       }
     }
-  }
+  });
   forces_valid = true;
 }
 

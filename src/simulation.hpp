@@ -115,8 +115,16 @@ class Simulation {
   std::uint64_t seed() const { return seed_; }
   // Threads of the force kernels and the integrators (slender -t N, or OMP_NUM_THREADS;
   // 1: serial). A run is bit-identical to itself for the same thread count.
-  int threads() const { return threads_; }
+  // A scene of fewer than threads_min_nodes() nodes runs on one thread: below that the
+  // cores pass the node arrays back and forth between the kernels (each splits the work
+  // its own way) and the forks cost more than the halves of the work save
+  // (docs/performance.md, "Threads"). A function of the node count only, so still
+  // deterministic; a growing wire changes over as it crosses the size.
+  int threads() const { return nodes_.n_owned() >= threads_min_nodes_ ? threads_ : 1; }
+  int requested_threads() const { return threads_; }
   void set_threads(int n);
+  std::size_t threads_min_nodes() const { return threads_min_nodes_; }
+  void set_threads_min_nodes(std::size_t n) { threads_min_nodes_ = n; }
   // When the contact pair lists are rebuilt, decided once per evaluation (neighbors.hpp).
   NeighborService& neighbors() { return neighbors_; }
   const NeighborService& neighbors() const { return neighbors_; }
@@ -125,14 +133,14 @@ class Simulation {
   // parallel_forces() onto the node forces with this simulation's threads.
   template <class Kernel>
   double parallel_node_forces(std::size_t n, Kernel&& kernel) {
-    return parallel_forces(threads_, scratch_, nodes_.f, n, std::forward<Kernel>(kernel));
+    return parallel_forces(threads(), scratch_, nodes_.f, n, std::forward<Kernel>(kernel));
   }
   // The same for a kernel over the items of one chain (src/threads.hpp, ChainForces):
   // bit-identical to one thread, without per-thread force buffers.
   template <class Kernel>
   double parallel_chain_forces(std::size_t n, bool closed, long n_positions, long lo, long hi,
                                Kernel&& kernel) {
-    return slender::parallel_chain_forces(threads_, chain_halos_, nodes_.f, n, closed, n_positions,
+    return slender::parallel_chain_forces(threads(), chain_halos_, nodes_.f, n, closed, n_positions,
                                           lo, hi, std::forward<Kernel>(kernel));
   }
 
@@ -288,6 +296,7 @@ class Simulation {
   std::uint64_t seed_;
   std::mt19937_64 rng_;
   int threads_ = 1;
+  std::size_t threads_min_nodes_ = kThreadsMinNodes;
   ForceScratch scratch_;
   NeighborService neighbors_;
   ChainHalos chain_halos_;

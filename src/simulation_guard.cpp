@@ -1,6 +1,9 @@
 // Simulation: the instability guard (checks after steps, the last good state, the stop).
 #include <algorithm>
+#include <array>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <sstream>
 
@@ -136,22 +139,50 @@ std::string Simulation::last_good_problem() const {
 
 void Simulation::check_guard(long) {
   const size_t n = nodes_.n_owned();
-  for (size_t i = 0; i < n; ++i) {
-    if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite())
-      fail("non-finite position or velocity of node " + std::to_string(i + 1), step);
-    if (!nodes_.f[i].allFinite()) fail("non-finite force on node " + std::to_string(i + 1), step);
+  // One pass on the threads' node ranges (threads.hpp): each range's first non-finite node
+  // and its fastest node (the first of equals); the ranges are taken in order, so the
+  // verdict and the node named are those of a serial scan.
+  struct Scan {
+    size_t bad = SIZE_MAX;
+    bool bad_force = false;
+    double vmax = 0.0;
+    size_t imax = 0;
+  };
+  std::array<Scan, kMaxThreads> scans{};
+  const int T = parallel_ranges(threads(), n, [&](int tid, size_t begin, size_t end) {
+    Scan s;
+    for (size_t i = begin; i < end; ++i) {
+      if (s.bad == SIZE_MAX) {
+        if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite()) {
+          s.bad = i;
+        } else if (!nodes_.f[i].allFinite()) {
+          s.bad = i;
+          s.bad_force = true;
+        }
+      }
+      const double sp = nodes_.v[i].norm();
+      if (sp > s.vmax) {
+        s.vmax = sp;
+        s.imax = i;
+      }
+    }
+    scans[static_cast<size_t>(tid)] = s;
+  });
+  double vmax = 0.0;
+  size_t imax = 0;
+  for (int t = 0; t < T; ++t) {
+    const Scan& s = scans[static_cast<size_t>(t)];
+    if (s.bad != SIZE_MAX) {
+      if (s.bad_force) fail("non-finite force on node " + std::to_string(s.bad + 1), step);
+      fail("non-finite position or velocity of node " + std::to_string(s.bad + 1), step);
+    }
+    if (s.vmax > vmax) {
+      vmax = s.vmax;
+      imax = s.imax;
+    }
   }
   double lmin = topo_.min_rest_length();
   if (lmin < 1e299) {
-    double vmax = 0.0;
-    size_t imax = 0;
-    for (size_t i = 0; i < n; ++i) {
-      double s = nodes_.v[i].norm();
-      if (s > vmax) {
-        vmax = s;
-        imax = i;
-      }
-    }
     if (vmax * dt > guard.max_step_fraction * lmin) {
       // advise from the last good state's speed when this one has already blown up
       double vgood = 0.0;

@@ -29,6 +29,9 @@ namespace slender {
 // Below this many work items per thread a kernel runs serially: the cost of waking the
 // threads (a few microseconds) would exceed the work.
 inline constexpr std::size_t kMinItemsPerThread = 256;
+// A scene smaller than this runs on one thread (Simulation::threads_min_nodes; measured,
+// docs/performance.md "Threads"). SLENDER_THREADS_MIN_NODES overrides it.
+inline constexpr std::size_t kThreadsMinNodes = 2000;
 // The most threads a simulation takes.
 inline constexpr int kMaxThreads = 64;
 

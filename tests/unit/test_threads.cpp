@@ -22,6 +22,7 @@ std::unique_ptr<Simulation> packed_helix(int threads, double mu = 0.3, int n = 3
   auto sim = std::make_unique<Simulation>(3, 7);
   sim->verbose = false;
   sim->set_threads(threads);
+  sim->set_threads_min_nodes(0);  // the kernels on threads at any size
   const double r = 10.0, pitch = 0.95;
   const double turn = 2 * M_PI * r;
   std::vector<Vec3> pts;
@@ -56,6 +57,7 @@ std::unique_ptr<Simulation> packed_spiral(int threads, int n = 3000) {
   auto sim = std::make_unique<Simulation>(2, 7);
   sim->verbose = false;
   sim->set_threads(threads);
+  sim->set_threads_min_nodes(0);  // the kernels on threads at any size
   const double b = 0.95 / (2 * M_PI);
   double th = 3.0 / b, rmax = 0.0;
   std::vector<Vec3> pts;
@@ -137,6 +139,16 @@ TEST(Threads, ThreadCountIsValidated) {
   EXPECT_THROW(sim.set_threads(0), InputError);
   EXPECT_THROW(sim.set_threads(kMaxThreads + 1), InputError);
   sim.set_threads(2);
+  EXPECT_EQ(sim.requested_threads(), 2);
+  // a scene below threads_min_nodes runs on one thread, and takes the threads asked for
+  // once it has grown to that size
+  EXPECT_EQ(sim.threads(), 1);
+  sim.set_threads_min_nodes(50);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 49; ++i) pts.emplace_back(i, 0, 0);
+  sim.add_chain("w", pts, 1.0, false);
+  EXPECT_EQ(sim.threads(), 1);
+  sim.add_chain("v", {Vec3(0, 5, 0), Vec3(1, 5, 0)}, 1.0, false);
   EXPECT_EQ(sim.threads(), 2);
 }
 
@@ -166,6 +178,7 @@ TEST(Threads, CosseratRodGivesTheSerialForcesAndFrameForces) {
       sim = std::make_unique<Simulation>(3, 1);
       sim->verbose = false;
       sim->set_threads(k + 1);
+      sim->set_threads_min_nodes(0);  // the kernels on threads at any size
       const int n = 2001;
       std::vector<Vec3> pts;
       for (int i = 0; i < n; ++i) {
@@ -263,6 +276,7 @@ TEST(Threads, ChainBondsGiveTheSerialForcesBitForBit) {
         auto sim = std::make_unique<Simulation>(rod ? 3 : 2, 7);
         sim->verbose = false;
         sim->set_threads(threads);
+        sim->set_threads_min_nodes(0);  // the kernels on threads at any size
         std::vector<Vec3> pts;
         const int n = 1500;  // >= 256 hinges per thread on three threads
         std::mt19937 g(5);

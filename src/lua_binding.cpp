@@ -12,12 +12,14 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "continuation.hpp"
 #include "file_check.hpp"
 #include "registry.hpp"
+#include "rod_frames.hpp"
 #include "scene_build.hpp"
 #include "simulation.hpp"
 #include "stiffness.hpp"
@@ -752,6 +754,60 @@ int l_force(lua_State* L) {
   int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "force");
   return push_vec(L, sim.nodes().f[i], sim.dimension());
 }
+// sim:frame(i): the rod frame of the edge from node i, {q = {w, x, y, z}, d1 = {...},
+// d2 = {...}, d3 = {...}} (src/rod_frames.hpp)
+int l_frame(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "frame");
+  const Vec4 q = rod_frame(sim, i);
+  auto list = [&](const char* key, std::initializer_list<double> xs) {
+    lua_createtable(L, static_cast<int>(xs.size()), 0);
+    int k = 1;
+    for (double x : xs) {
+      lua_pushnumber(L, x);
+      lua_rawseti(L, -2, k++);
+    }
+    lua_setfield(L, -2, key);
+  };
+  lua_createtable(L, 0, 4);
+  list("q", {q[0], q[1], q[2], q[3]});
+  const Vec3 a = qrod::d1(q), b = qrod::d2(q), c = qrod::d3(q);
+  list("d1", {a.x(), a.y(), a.z()});
+  list("d2", {b.x(), b.y(), b.z()});
+  list("d3", {c.x(), c.y(), c.z()});
+  return 1;
+}
+// sim:set_frame(i, {q = {w, x, y, z}}) or (i, {d1 = {...}, d3 = {...}})
+int l_set_frame(lua_State* L) {
+  Simulation& sim = sim_arg(L);
+  int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "set_frame");
+  luaL_checktype(L, 3, LUA_TTABLE);
+  auto field = [&](const char* key, std::size_t n) -> std::optional<Eigen::VectorXd> {
+    lua_getfield(L, 3, key);
+    if (lua_isnil(L, -1)) {
+      lua_pop(L, 1);
+      return std::nullopt;
+    }
+    Value v = to_value(L, -1, key);
+    lua_pop(L, 1);
+    auto* d = std::get_if<std::vector<double>>(&v);
+    if (!d || d->size() != n)
+      throw InputError(std::string("set_frame: '") + key + "' must be a list of " +
+                       std::to_string(n) + " numbers");
+    return Eigen::Map<const Eigen::VectorXd>(d->data(), static_cast<long>(n));
+  };
+  const auto q = field("q", 4);
+  const auto d1 = field("d1", 3), d3 = field("d3", 3);
+  if (q && (d1 || d3)) throw InputError("set_frame: give either q or d1 and d3, not both");
+  if (q) {
+    set_rod_frame(sim, i, Vec4((*q)[0], (*q)[1], (*q)[2], (*q)[3]));
+  } else if (d1 && d3) {
+    set_rod_frame(sim, i, frame_from_directors(Vec3(*d1), Vec3(*d3)));
+  } else {
+    throw InputError("set_frame: give {q = {w, x, y, z}} or {d1 = {x, y, z}, d3 = {x, y, z}}");
+  }
+  return 0;
+}
 int l_set_position(lua_State* L) {
   Simulation& sim = sim_arg(L);
   int i = node_index(index_arg(L, 2, "the node index"), sim.nodes().size(), "set_position");
@@ -942,6 +998,8 @@ const luaL_Reg kSimMethods[] = {SLENDER_METHOD("wire", l_wire),
                                 SLENDER_METHOD("velocity", l_velocity),
                                 SLENDER_METHOD("force", l_force),
                                 SLENDER_METHOD("set_position", l_set_position),
+                                SLENDER_METHOD("frame", l_frame),
+                                SLENDER_METHOD("set_frame", l_set_frame),
                                 SLENDER_METHOD("chain_node", l_chain_node),
                                 SLENDER_METHOD("nnodes", l_nnodes),
                                 SLENDER_METHOD("step", l_step),

@@ -77,4 +77,23 @@ thermo_run(false)
 lines = 0
 for _ in io.lines("append_thermo.csv") do lines = lines + 1 end
 assert(lines == 4, "without append the CSV is replaced: " .. lines .. " lines")
+-- rod frames: set from directors before the first run (kept by the rod's setup), read
+-- back as a quaternion and directors; a twisted start holds twist energy
+local rod = slender.simulation { dimension = 3, quiet = true }
+rod:wire { name = "r", points = { { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 3, 0, 0 } } }
+rod:bond("spring", { k = 100 })
+rod:bond("rod/cosserat", { YI = 1, GJ = 1, coupling = 20, rot_inertia = 0.1 })
+local a = 0.3
+rod:set_frame(3, { d1 = { 0, math.cos(a), math.sin(a) }, d3 = { 1, 0, 0 } })
+rod:integrator("verlet", { dt = 1e-3 })
+rod:run(0)
+local fr = rod:frame(3)
+assert(math.abs(fr.d1[2] - math.cos(a)) < 1e-12 and math.abs(fr.d1[3] - math.sin(a)) < 1e-12,
+       "frame d1 read back: " .. table.concat(fr.d1, " "))
+assert(math.abs(fr.d3[1] - 1) < 1e-12 and #fr.q == 4 and #fr.d2 == 3)
+assert(rod:value("energy.twist") > 0, "a twisted start holds twist energy")
+local ok, err = pcall(function() rod:frame(4) end)
+assert(not ok and tostring(err):match("starts no edge"), tostring(err))
+ok, err = pcall(function() rod:set_frame(1, { d1 = { 1, 0, 0 }, d3 = { 1, 0, 0 } }) end)
+assert(not ok and tostring(err):match("right angles"), tostring(err))
 print("deck features: ok")

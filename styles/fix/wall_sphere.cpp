@@ -8,6 +8,7 @@
 
 #include "contact_law.hpp"
 #include "context.hpp"
+#include "hessian.hpp"
 #include "registry.hpp"
 
 namespace slender {
@@ -148,6 +149,35 @@ class SphereWallFix : public FixStyle {
     }
     stiffness_.finish(sim.nodes().mass);
     return e;
+  }
+  // The Hessian of the wall energy k/(p+1) delta^(p+1), delta the node's overlap with the
+  // wall along its distance from the centre (docs/models.md §9.9): the tangent stiffness
+  // along the radius, and the force over the distance across it (a node pressed into
+  // the inside of a sphere is pushed inwards, which softens it sideways; outside the
+  // other way). Friction's stick springs have no energy of the positions alone: none then.
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    if (law_.frictional()) return false;
+    const auto& x = sim.nodes().x;
+    const Property<int>* mask = sim.held_components_if_any();
+    const int dim = sim.dimension();
+    for (const int i : nodes_) {
+      if (mask && (*mask)[i] == kMaskAll) continue;
+      const Vec3 rel = x[i] - c_;
+      const double dist = rel.norm();
+      const double delta = inside_ ? dist + 0.5 * d_ - r_ : r_ + 0.5 * d_ - dist;
+      if (delta <= 0.0 || dist == 0.0 || in_opening(rel)) continue;
+      const Vec3 n = rel / dist;
+      const Eigen::Matrix3d nn = n * n.transpose();
+      // E'(dist) = +-F(delta): inside the force points inwards (-n), so E grows with dist
+      const double dE = (inside_ ? 1.0 : -1.0) * law_.elastic_force(delta);
+      const Eigen::Matrix3d h =
+          law_.tangent_stiffness(delta) * nn + (dE / dist) * (Eigen::Matrix3d::Identity() - nn);
+      if (dim == 2)
+        H.add(i, i, Eigen::Matrix2d(h.topLeftCorner<2, 2>()));
+      else
+        H.add(i, i, h);
+    }
+    return true;
   }
   double max_frequency(const Context& sim) const override {
     double mmin = 1e300;

@@ -14,6 +14,7 @@
 
 #include "cell_grid.hpp"
 #include "chain_select.hpp"
+#include "contact_hessian.hpp"
 #include "contact_law.hpp"
 #include "pair_history.hpp"
 #include "registry.hpp"
@@ -222,6 +223,34 @@ class NodeEdgeContactPair : public PairStyle {
     return energy;
   }
 
+  // The Hessian of the contacts of the last evaluation (docs/models.md §9.9; the energy
+  // k/(p+1) overlap^(p+1) of the node's distance to its edge, src/contact_hessian.hpp).
+  // Friction's stick springs have no energy of the positions alone: none then.
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    if (law_.frictional()) return false;
+    const auto& x = sim.nodes().x;
+    for (const Entry& c : list_) {
+      if (!(c.flags & kActive)) continue;
+      const Edge& ed = edges_[c.edge];
+      const Vec3 seg = x[ed.b] - x[ed.a];
+      const double len2 = seg.squaredNorm();
+      const double t = len2 > 0 ? std::clamp((x[c.node] - x[ed.a]).dot(seg) / len2, 0.0, 1.0) : 0.0;
+      const Vec3 r = x[c.node] - (x[ed.a] + t * seg);
+      const double dist = r.norm();
+      const bool interior = t > 0.0 && t < 1.0;
+      const int side = seg.x() * r.y() - seg.y() * r.x() > 0 ? 1 : -1;
+      // pushed past the centre line (compute(): the overlap is then d + distance)
+      const double sigma = interior && c.side != 0 && side != c.side ? -1.0 : 1.0;
+      const double overlap = d_ - sigma * dist;
+      if (!(overlap > 0.0)) continue;
+      Eigen::MatrixXd dc(3, interior ? 1 : 0);
+      if (interior) dc << 0.0, 1.0, -1.0;
+      add_distance_hessian<3>(H, {c.node, ed.a, ed.b}, x, Eigen::Vector3d(1.0, -(1 - t), -t), dc,
+                              -sigma * law_.elastic_force(overlap), law_.tangent_stiffness(overlap),
+                              sim.dimension());
+    }
+    return true;
+  }
   double max_frequency(const Context& sim) const override {
     double m = 1e300;
     for (auto* c : select_chains(sim, names_))

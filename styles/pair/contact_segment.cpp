@@ -12,6 +12,7 @@
 
 #include "cell_grid.hpp"
 #include "chain_select.hpp"
+#include "contact_hessian.hpp"
 #include "contact_law.hpp"
 #include "pair_history.hpp"
 #include "registry.hpp"
@@ -161,6 +162,36 @@ class SegmentContactPair : public PairStyle {
     return energy;
   }
 
+  // The Hessian of the contacts at the current positions (docs/models.md §9.9; the energy
+  // k/(p+1) overlap^(p+1) of the segments' distance, src/contact_hessian.hpp). Friction's
+  // stick springs have no energy of the positions alone: none then.
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    if (law_.frictional()) return false;
+    const auto& x = sim.nodes().x;
+    const double reach = 2.0 * a_;
+    ContactLaw law = law_;
+    for (const Entry& c : list_) {
+      const Edge& e1 = edges_[static_cast<size_t>(c.e1)];
+      const Edge& e2 = edges_[static_cast<size_t>(c.e2)];
+      double s, t;
+      closest_points(x[e1.a], x[e1.b], x[e2.a], x[e2.b], s, t);
+      const Vec3 d12 = (x[e1.a] + s * (x[e1.b] - x[e1.a])) - (x[e2.a] + t * (x[e2.b] - x[e2.a]));
+      const double dist = d12.norm();
+      if (!(dist < reach) || dist == 0.0) continue;
+      if (estar_per_length_ > 0) law.stiffness = estar_per_length_ * (e1.rest + e2.rest);
+      const double overlap = reach - dist;
+      // r = (1-s) a1 + s b1 - (1-t) a2 - t b2; s, t free where inside their segments
+      const bool fs = s > 0.0 && s<1.0, ft = t> 0.0 && t < 1.0;
+      Eigen::MatrixXd dc(4, int(fs) + int(ft));
+      int m = 0;
+      if (fs) dc.col(m++) << -1.0, 1.0, 0.0, 0.0;
+      if (ft) dc.col(m++) << 0.0, 0.0, 1.0, -1.0;
+      add_distance_hessian<4>(
+          H, {e1.a, e1.b, e2.a, e2.b}, x, Eigen::Vector4d(1 - s, s, -(1 - t), -t), dc,
+          -law.elastic_force(overlap), law.tangent_stiffness(overlap), sim.dimension());
+    }
+    return true;
+  }
   double max_frequency(const Context& sim) const override {
     auto chains = select_chains(sim, names_);
     if (chains.empty()) return 0.0;

@@ -398,3 +398,133 @@ TEST(Newton, BucklesA3dRodOntoTheElastica) {
   EXPECT_NEAR(std::abs(sim.nodes().x[N].y()), 2.0 * k / Kk, 0.01);
   EXPECT_NEAR(sim.nodes().x[N].z(), 0.0, 1e-6);  // it stays in its plane
 }
+
+// Contact Hessians (src/contact_hessian.hpp): the distance's envelope over the closest
+// point's free parameters. 2D node-edge: a wire lying across another, its nodes pressed
+// onto the other's edges inside them and near their ends (a clamped parameter), at two
+// exponents of the law.
+TEST(Hessian, NodeEdgeContactMatchesFiniteDifferencesOfItsForces) {
+  for (double p : {2.0, 1.0}) {
+    Simulation sim(2, 1);
+    sim.verbose = false;
+    sim.add_chain("a", {Vec3(0, 0, 0), Vec3(1, 0.05, 0), Vec3(2, -0.02, 0), Vec3(3, 0, 0)}, 1.0,
+                  false);
+    sim.add_chain("b",
+                  {Vec3(0.4, 0.8, 0), Vec3(1.35, 0.72, 0), Vec3(2.2, 0.9, 0), Vec3(3.3, 0.75, 0)},
+                  1.0, false);
+    sim.add_bond("spring", P({{"k", 40.0}}));
+    sim.add_pair("contact/node-edge",
+                 P({{"diameter", 1.0}, {"stiffness", 300.0}, {"exponent", p}, {"skin", 0.3}}));
+    sim.compute_forces();
+    EXPECT_GE(sim.find_style("contact/node-edge")->value("contacts"), 4) << p;
+    EXPECT_LT(fd_hessian_error(sim), 1e-6) << "exponent " << p;
+  }
+}
+
+// 3D segment contact: two rods crossing at a skew angle (both parameters free), and a
+// rod ending against another's side (one parameter at its end).
+TEST(Hessian, SegmentContactMatchesFiniteDifferencesOfItsForces) {
+  for (double p : {1.0, 2.0}) {
+    Simulation sim(3, 1);
+    sim.verbose = false;
+    sim.add_chain("a", {Vec3(-1, 0, 0), Vec3(0.1, 0.05, 0), Vec3(1.2, 0, 0.03)}, 1.0, false);
+    sim.add_chain("b", {Vec3(0.2, -1, 0.8), Vec3(-0.1, 0.2, 0.75), Vec3(0.3, 1.1, 0.85)}, 1.0,
+                  false);
+    sim.add_chain("c", {Vec3(1.0, 0.1, 2.5), Vec3(1.05, 0.0, 1.3), Vec3(0.95, 0.05, 0.6)}, 1.0,
+                  false);
+    sim.add_bond("spring", P({{"k", 40.0}}));
+    sim.add_pair("contact/segment",
+                 P({{"radius", 0.5}, {"stiffness", 300.0}, {"exponent", p}, {"skin", 0.3}}));
+    sim.compute_forces();
+    EXPECT_GE(sim.find_style("contact/segment")->value("contacts"), 3) << p;
+    EXPECT_LT(fd_hessian_error(sim), 1e-6) << "exponent " << p;
+  }
+}
+
+// With friction the stick springs carry no energy of the positions: no Hessian, and
+// Newton says so rather than solving without them.
+TEST(Hessian, FrictionalContactHasNone) {
+  Simulation sim(2, 1);
+  sim.verbose = false;
+  sim.add_chain("a", {Vec3(0, 0, 0), Vec3(1, 0, 0)}, 1.0, false);
+  sim.add_pair("contact/node-edge",
+               P({{"diameter", 1.0}, {"stiffness", 300.0}, {"mu_static", 0.3}}));
+  sim.compute_forces();
+  Hessian H;
+  EXPECT_FALSE(sim.pairs()[0]->add_hessian(sim.context(), H));
+}
+
+// The walls (wall/circle, wall/sphere): a ring pressed into a circular wall from inside,
+// and a 3D wire pressed onto a sphere from outside (the side the force softens the other
+// way).
+TEST(Hessian, WallsMatchFiniteDifferencesOfTheirForces) {
+  {
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 16; ++i) {
+      const double a = 2 * M_PI * i / 16;
+      pts.emplace_back((5.0 + 0.1 * std::sin(3 * a)) * std::cos(a),
+                       (5.0 + 0.1 * std::sin(3 * a)) * std::sin(a), 0);
+    }
+    Simulation ring(2, 1);
+    ring.verbose = false;
+    ring.add_chain("ring", pts, 1.0, true);
+    ring.add_bond("spring", P({{"k", 40.0}}));
+    ring.add_fix("cavity", "wall/circle",
+                 P({{"radius", 5.3}, {"diameter", 1.0}, {"stiffness", 200.0}, {"exponent", 2.0}}));
+    ring.compute_forces();
+    EXPECT_GE(ring.find_style("cavity")->value("contacts"), 8);
+    EXPECT_LT(fd_hessian_error(ring), 1e-6);
+  }
+  Simulation sim(3, 1);
+  sim.verbose = false;
+  sim.add_chain(
+      "w", {Vec3(-1.5, 0.2, 2.3), Vec3(-0.5, 0.1, 2.35), Vec3(0.5, -0.1, 2.3), Vec3(1.5, 0.0, 2.4)},
+      1.0, false);
+  sim.add_bond("spring", P({{"k", 40.0}}));
+  sim.add_fix("ball", "wall/sphere",
+              P({{"radius", 2.0},
+                 {"diameter", 1.0},
+                 {"stiffness", 200.0},
+                 {"exponent", 1.0},
+                 {"side", std::string("outside")}}));
+  sim.compute_forces();
+  EXPECT_GE(sim.find_style("ball")->value("contacts"), 2);
+  EXPECT_LT(fd_hessian_error(sim), 1e-6);
+}
+
+// Newton through contact: a clamped wire pushed down at its middle onto a second clamped
+// wire (node-edge contact) comes to the equilibrium FIRE finds, in few iterations.
+TEST(Newton, SolvesAWirePressedOntoAnother) {
+  auto scene = [](Simulation& sim) {
+    sim.verbose = false;
+    std::vector<Vec3> top, bottom;
+    for (int i = 0; i <= 12; ++i) {
+      top.emplace_back(0.5 * i, 1.02, 0);
+      bottom.emplace_back(0.5 * i + 0.25, 0.0, 0);
+    }
+    sim.add_chain("top", top, 1.0, false);
+    sim.add_chain("bottom", bottom, 1.0, false);
+    sim.add_bond("spring", P({{"k", 2000.0}}));
+    sim.add_bond("bend2d", P({{"k", 20.0}}));
+    sim.add_pair("contact/node-edge", P({{"diameter", 1.0}, {"stiffness", 500.0}}));
+    sim.set_group("ends", {0, 1, 11, 12, 13, 14, 24, 25});
+    sim.set_group("middle", {6});
+    sim.add_fix("hold", "clamp", P({{"group", std::string("ends")}}));
+    sim.add_fix("push", "force/constant",
+                P({{"group", std::string("middle")}, {"force", std::vector<double>{0.0, -3.0}}}));
+  };
+  Simulation newton(2, 1), fire(2, 1);
+  scene(newton);
+  scene(fire);
+  const long it = newton.minimize(1e-9, 100, "newton");
+  EXPECT_LT(newton.max_force(), 1e-9);
+  EXPECT_LT(it, 30);
+  fire.minimize(1e-9, 2000000, "fire");
+  ASSERT_LT(fire.max_force(), 1e-9);
+  EXPECT_GT(newton.find_style("contact/node-edge")->value("contacts"), 0);
+  double worst = 0.0;
+  for (size_t i = 0; i < newton.nodes().size(); ++i)
+    worst = std::max(worst, (newton.nodes().x[i] - fire.nodes().x[i]).norm());
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(newton.nodes().x[6].y(), 1.0);  // pressed into the contact
+}

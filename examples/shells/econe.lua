@@ -1,5 +1,6 @@
 -- E-cone (docs/models.md §7.2 S-1): a free disc grows circumferentially, phi_e ramped from 0 in steps with a
--- FIRE relaxation after each (-v minimizer=lbfgs: L-BFGS; -v minimizer=damped: damped Newmark dynamics to a
+-- FIRE relaxation after each (-v minimizer=lbfgs: L-BFGS; -v minimizer=newton: Newton with exact Hessians;
+-- -v minimizer=damped: damped Newmark dynamics to a
 -- force and a kinetic-energy tolerance; see lib/econe.lua); records E_b_hat(phi_e), the energies, the number of wings and the first
 -- self-contact ("kissing" excess angle, refined by bisection), then the contact-plane angle gamma. Plots
 -- econe.png (energies and gamma against phi_e) and shape.png (the final surface coloured by U_b).

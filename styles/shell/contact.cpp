@@ -20,6 +20,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "contact_hessian.hpp"
 #include "contact_law.hpp"
 #include "context.hpp"
 #include "pair_history.hpp"
@@ -296,6 +297,72 @@ class ShellContactPair : public PairStyle {
       face_flag_[c.t1] = face_flag_[c.t2] = 1.0;
     }
     return energy;
+  }
+
+  // The Hessian of the contact energy at the current positions (docs/models.md §9.9): each
+  // feature pair that compute() loads is a distance between two closest points on the
+  // control triangles, weights w1 on T1 and -w2 on T2; a weight's support of m vertices
+  // leaves m - 1 free parameters (a vertex, an edge, the face). U'(r) = -k (h-r)^2/r^2,
+  // U''(r) = 2 k h (h-r)/r^3, and the linear continuation below 1e-3 h has U'' = 0.
+  // Friction's stick springs have no energy of the positions alone: none then.
+  bool add_hessian(Context& sim, Hessian& H) const override {
+    if (friction_.frictional()) return false;
+    const auto& x = sim.nodes().x;
+    const auto& T = mesh_->mesh.tri;
+    const double rc = 1e-3 * h_;
+    for (const Candidate& c : pairs_) {
+      std::array<Vec3, 3> A, B;
+      std::array<int, 6> node{};
+      for (int k = 0; k < 3; ++k) {
+        node[k] = base_ + T[c.t1][k];
+        node[3 + k] = base_ + T[c.t2][k];
+        A[k] = x[node[k]];
+        B[k] = x[node[3 + k]];
+      }
+      const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
+      if (c.near && (near_never_ || n1.dot(n2) > 0)) continue;
+      if (separated(A, B, n1, n2)) continue;
+      auto add = [&](const shell::TrianglePair& tp) {
+        if (!(tp.dist > 0.0)) return;  // touching: no distance to differentiate
+        const double r = std::max(tp.dist, rc);
+        const double dE = -k_ * (h_ - r) * (h_ - r) / (r * r);
+        const double d2E = tp.dist < rc ? 0.0 : 2 * k_ * h_ * (h_ - r) / (r * r * r);
+        Eigen::Matrix<double, 6, 1> w;
+        w << tp.w1[0], tp.w1[1], tp.w1[2], -tp.w2[0], -tp.w2[1], -tp.w2[2];
+        // free parameters: on each side, moving weight from its first supported vertex to
+        // each other one
+        Eigen::MatrixXd dc = Eigen::MatrixXd::Zero(6, 4);
+        int m = 0;
+        for (int side = 0; side < 2; ++side) {
+          const auto& ws = side == 0 ? tp.w1 : tp.w2;
+          const double sign = side == 0 ? 1.0 : -1.0;
+          int first = -1;
+          for (int k = 0; k < 3; ++k) {
+            if (ws[k] == 0.0) continue;
+            if (first < 0) {
+              first = k;
+              continue;
+            }
+            dc(3 * side + first, m) = -sign;
+            dc(3 * side + k, m) = sign;
+            ++m;
+          }
+        }
+        add_distance_hessian<6>(H, node, x, w, Eigen::MatrixXd(dc.leftCols(m)), dE, d2E, 3);
+      };
+      if (dense_all_) {
+        shell::for_each_feature_pair(
+            A, B,
+            [&](const shell::TrianglePair& tp) {
+              if (tp.dist < h_) add(tp);
+            },
+            masks_[c.t1], masks_[c.t2]);
+      } else {
+        const shell::TrianglePair tp = shell::triangle_distance(A, B);
+        if (tp.dist < h_) add(tp);
+      }
+    }
+    return true;
   }
 
   std::string neighbor_structure() const override { return "voxels + triangle pair list"; }

@@ -107,6 +107,33 @@ TEST(ShellContact, ForcesAreTheGradientOfTheContactEnergy) {
   }
 }
 
+// The Hessian (docs/models.md §9.9) against central differences of the forces: the top
+// plate turned about z (no parallel edges) and tilted, its nodes jiggled, within h of the
+// bottom one: vertex-face, vertex-edge and edge-edge contacts, both dense modes.
+TEST(ShellContact, HessianMatchesFiniteDifferencesOfTheForces) {
+  for (std::string dense : {"closest", "all"}) {
+    auto sim = std::make_unique<Simulation>(3, 1);
+    sim->verbose = false;
+    shell::add_surface(*sim, "s", two_plates(1.0, 2), 0.0);
+    sim->add_pair(
+        "contact/shell",
+        P({{"mesh", std::string("s")}, {"thickness", 0.02}, {"k", 3.0}, {"dense", dense}}));
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(-0.002, 0.002);
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Vec3::UnitZ()).toRotationMatrix();
+    for (auto& x : sim->nodes().x) {
+      if (x.z() > 0.5) {
+        x = turn * (x - Vec3(0.5, 0.5, 1.0)) + Vec3(0.5, 0.5, 0.013);
+        x.z() += 0.004 * (x.x() - 0.5);
+      }
+      x += Vec3(u(rng), u(rng), u(rng));
+    }
+    sim->compute_forces();
+    EXPECT_GT(sim->find_style("contact/shell")->value("contacts"), 2) << dense;
+    EXPECT_LT(fd_hessian_error(*sim, 1e-8), 1e-5) << dense;
+  }
+}
+
 TEST(ShellContact, FlatShellIsNotRepelledByItsNeighbours) {
   auto sim = std::make_unique<Simulation>(3, 1);
   sim->verbose = false;

@@ -97,8 +97,9 @@ function M.build(opts)
   -- is below ftol and the kinetic energy below ketol_rel * Y h^3 (the bending energy scale of
   -- the unit disc; default 1e-7).
   s.minimizer = slender.var("minimizer", slender.var("integrator", "fire"))
-  if s.minimizer ~= "fire" and s.minimizer ~= "lbfgs" and s.minimizer ~= "damped" then
-    error("minimizer must be fire, lbfgs or damped, got " .. tostring(s.minimizer))
+  if s.minimizer ~= "fire" and s.minimizer ~= "lbfgs" and s.minimizer ~= "damped" and
+     s.minimizer ~= "newton" then
+    error("minimizer must be fire, lbfgs, damped or newton, got " .. tostring(s.minimizer))
   end
   s.ketol = s.minimizer == "damped" and slender.var("ketol_rel", 1e-7) * s.young * s.h ^ 3 or nil
   if s.minimizer == "damped" then
@@ -116,7 +117,7 @@ function M.build(opts)
   s.t0 = slender.clock()
   -- grow to phi_e and relax to equilibrium; returns the FIRE steps
   s.steps_total = 0  -- FIRE steps of all relaxations, for element-steps/s
-  local method = ({fire = "fire", lbfgs = "lbfgs", damped = "dynamics"})[s.minimizer]
+  local method = ({fire = "fire", lbfgs = "lbfgs", damped = "dynamics", newton = "newton"})[s.minimizer]
   local lbfgs = s.minimizer == "lbfgs" and
                 {memory = slender.var("memory", 50), max_move = s.h / 4} or {}
   function s.relax(phi)

@@ -261,8 +261,11 @@ class KoiterShell : public ShellStyle {
   // combination of real nodes: H -> T^T H T). The dead loads are linear: nothing; the
   // pressure follows the surface (below).
   bool add_hessian(Context& sim, Hessian& H) const override {
+    // the ghost springs of the combined method derive from an energy only when they act back
+    // on the mirror's nodes (ghost_reaction); on the ghost alone their Jacobian is not
+    // symmetric
     for (Boundary r : rule_)
-      if (r == Boundary::kCombined) return false;  // the ghost springs: not yet
+      if (r == Boundary::kCombined && !ghost_reaction_) return false;
     using Deriv = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 96, 1>;
     using AD = Eigen::AutoDiffScalar<Deriv>;
     using V = Eigen::Matrix<AD, 3, 1>;
@@ -418,6 +421,26 @@ class KoiterShell : public ShellStyle {
                 H.add(ri, ci, Mat3(wr.transpose() * b * wc));
           }
       }
+    }
+    // the ghost springs (5.35): 1/2 k (|d| - dead)^2 of d = x_g - (x_b0 + x_b2 - x_i), a
+    // spring of rest length `dead` on the ghost and its mirror position (docs/models.md §9.7)
+    const double dead = lambda_ * mean_edge_;
+    for (std::size_t k = 0; k < g.ghosts.size(); ++k) {
+      if (rule_[k] != Boundary::kCombined) continue;
+      const auto& gh = g.ghosts[k];
+      const Vec3 d =
+          x[base_ + gh.node] - (x[base_ + gh.b0] + x[base_ + gh.b2] - x[base_ + gh.interior]);
+      const double len = d.norm();
+      if (len <= dead) continue;
+      const Vec3 n = d / len;
+      const Mat3 nn = n * n.transpose();
+      const Mat3 h = k_ghost_ * (nn + (1.0 - dead / len) * (I - nn));
+      const std::array<std::pair<int, double>, 4> w{{{base_ + gh.node, 1.0},
+                                                     {base_ + gh.b0, -1.0},
+                                                     {base_ + gh.b2, -1.0},
+                                                     {base_ + gh.interior, 1.0}}};
+      for (auto [i, wi] : w)
+        for (auto [j, wj] : w) H.add(i, j, Mat3(wi * wj * h));
     }
     return true;
   }

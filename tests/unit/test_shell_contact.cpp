@@ -85,15 +85,23 @@ TEST(ShellContact, TriangleDistance) {
   }
 }
 
+namespace {
+// Two plates 1 apart in the reference with the contact alone (h = 0.02, k = 3); the test
+// brings them within h.
+std::unique_ptr<Simulation> contact_plates(const std::string& dense) {
+  auto sim = std::make_unique<Simulation>(3, 1);
+  sim->verbose = false;
+  shell::add_surface(*sim, "s", two_plates(1.0, 2), 0.0);
+  sim->add_pair("contact/shell",
+                P({{"mesh", std::string("s")}, {"thickness", 0.02}, {"k", 3.0}, {"dense", dense}}));
+  return sim;
+}
+}  // namespace
+
 TEST(ShellContact, ForcesAreTheGradientOfTheContactEnergy) {
   for (std::string dense : {"closest", "all"}) {
-    auto sim = std::make_unique<Simulation>(3, 1);
-    sim->verbose = false;
     // far apart in the reference, brought within h now
-    shell::add_surface(*sim, "s", two_plates(1.0, 2), 0.0);
-    sim->add_pair(
-        "contact/shell",
-        P({{"mesh", std::string("s")}, {"thickness", 0.02}, {"k", 3.0}, {"dense", dense}}));
+    auto sim = contact_plates(dense);
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> u(-0.003, 0.003);
     for (auto& x : sim->nodes().x) {
@@ -112,12 +120,7 @@ TEST(ShellContact, ForcesAreTheGradientOfTheContactEnergy) {
 // bottom one: vertex-face, vertex-edge and edge-edge contacts, both dense modes.
 TEST(ShellContact, HessianMatchesFiniteDifferencesOfTheForces) {
   for (std::string dense : {"closest", "all"}) {
-    auto sim = std::make_unique<Simulation>(3, 1);
-    sim->verbose = false;
-    shell::add_surface(*sim, "s", two_plates(1.0, 2), 0.0);
-    sim->add_pair(
-        "contact/shell",
-        P({{"mesh", std::string("s")}, {"thickness", 0.02}, {"k", 3.0}, {"dense", dense}}));
+    auto sim = contact_plates(dense);
     std::mt19937 rng(4);
     std::uniform_real_distribution<double> u(-0.002, 0.002);
     const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Vec3::UnitZ()).toRotationMatrix();

@@ -28,6 +28,19 @@ inline std::vector<Vec3> wiggly_chain(int n, int dim, unsigned seed, double amp 
   return pts;
 }
 
+// A straight Cosserat rod (penalty coupling) along x: n nodes, spacing l, chain "r",
+// with its stretching spring; quiet.
+inline Simulation& straight_cosserat_rod(Simulation& sim, int n, double l, double GJ) {
+  sim.verbose = false;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < n; ++i) pts.emplace_back(l * i, 0, 0);
+  sim.add_chain("r", pts, 1.0, false);
+  sim.add_bond("spring", P({{"k", 400.0}}));
+  sim.add_bond("rod/cosserat",
+               P({{"YI", 2.0}, {"GJ", GJ}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
+  return sim;
+}
+
 // Compares the forces of the scene with -dE/dx by central differences, for all
 // free coordinates of all nodes. Returns the worst relative error.
 inline double fd_force_error(Simulation& sim, double h = 1e-6) {

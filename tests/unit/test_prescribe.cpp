@@ -138,13 +138,7 @@ TEST(PrescribeFix, TwistsARodEndByAnAngleAndHoldsItsFrames) {
   const int n = 12;
   const double l = 0.5, GJ = 1.5, theta = 1.2;
   Simulation sim(3, 1);
-  sim.verbose = false;
-  std::vector<Vec3> pts;
-  for (int i = 0; i < n; ++i) pts.emplace_back(l * i, 0, 0);
-  sim.add_chain("r", pts, 1.0, false);
-  sim.add_bond("spring", P({{"k", 400.0}}));
-  sim.add_bond("rod/cosserat",
-               P({{"YI", 2.0}, {"GJ", GJ}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
+  straight_cosserat_rod(sim, n, l, GJ);
   sim.set_group("root", {0, 1});
   sim.set_group("end", {n - 2, n - 1});
   sim.add_fix("hold", "prescribe", P({{"group", std::string("root")}, {"frames", true}}));
@@ -167,7 +161,7 @@ TEST(PrescribeFix, TwistsARodEndByAnAngleAndHoldsItsFrames) {
   EXPECT_NEAR((qrod::d3(q[n - 2]) - Vec3(1, 0, 0)).norm(), 0.0, 1e-9);
   const Vec3 a0 = qrod::d1(q[0]), a1 = qrod::d1(q[n - 2]);
   EXPECT_NEAR(std::atan2(a0.cross(a1).dot(Vec3(1, 0, 0)), a0.dot(a1)), theta, 1e-9);
-  for (int i = 0; i < n; ++i) EXPECT_NEAR((sim.nodes().x[i] - pts[i]).norm(), 0.0, 1e-6);
+  for (int i = 0; i < n; ++i) EXPECT_NEAR((sim.nodes().x[i] - Vec3(l * i, 0, 0)).norm(), 0.0, 1e-6);
   // without a rod, frames = true is refused at the first evaluation
   Simulation bare(3, 1);
   bare.verbose = false;

@@ -12,17 +12,6 @@ using namespace slender;
 using namespace slender::test;
 
 namespace {
-// A straight rod along x of n nodes, spacing l, with the penalty coupling.
-Simulation& straight_rod(Simulation& sim, int n, double l, double GJ) {
-  sim.verbose = false;
-  std::vector<Vec3> pts;
-  for (int i = 0; i < n; ++i) pts.emplace_back(l * i, 0, 0);
-  sim.add_chain("r", pts, 1.0, false);
-  sim.add_bond("spring", P({{"k", 400.0}}));
-  sim.add_bond("rod/cosserat",
-               P({{"YI", 2.0}, {"GJ", GJ}, {"coupling", 50.0}, {"rot_inertia", 0.1}}));
-  return sim;
-}
 // The frame along x turned by angle a about x.
 Vec4 twisted(double a) {
   const Eigen::Quaterniond r(Eigen::AngleAxisd(a, Vec3::UnitX()));
@@ -35,7 +24,7 @@ TEST(RodFrames, FramesSetBeforeTheRunAreKeptAndTwistTheRod) {
   const int n = 12;
   const double l = 0.5, GJ = 1.5, step = 0.05;
   Simulation sim(3, 1);
-  straight_rod(sim, n, l, GJ);
+  straight_cosserat_rod(sim, n, l, GJ);
   for (int e = 0; e < n - 1; ++e) set_rod_frame(sim, e, twisted(step * e));
   sim.compute_forces();
   // n - 2 hinges, each turned by `step` about the tangent: (l/2) GJ (2 sin(step/2) / l)^2
@@ -55,7 +44,7 @@ TEST(RodFrames, FramesSetBeforeTheRunAreKeptAndTwistTheRod) {
 
 TEST(RodFrames, UnsetFramesGetTheirValuesAtSetup) {
   Simulation sim(3, 1);
-  straight_rod(sim, 5, 1.0, 1.0);
+  straight_cosserat_rod(sim, 5, 1.0, 1.0);
   EXPECT_THROW(rod_frame(sim, 0), InputError);  // not given yet
   sim.compute_forces();
   const Vec4 q = rod_frame(sim, 0);
@@ -84,7 +73,7 @@ TEST(RodFrames, ScenesWithoutFramesAndBadQuaternionsAreRefused) {
   EXPECT_THROW(rod_frame(bare, 0), InputError);
   EXPECT_THROW(set_rod_frame(bare, 0, twisted(0.0)), InputError);
   Simulation sim(3, 1);
-  straight_rod(sim, 4, 1.0, 1.0);
+  straight_cosserat_rod(sim, 4, 1.0, 1.0);
   EXPECT_THROW(set_rod_frame(sim, 0, Vec4::Zero()), InputError);
   EXPECT_THROW(set_rod_frame(sim, 0, Vec4(NAN, 0, 0, 0)), InputError);
   // a quaternion of any length is taken as its direction

@@ -34,7 +34,7 @@ OUT = f"{RESULTS}/{config['deck']}_f{fmt(F)}_{VARIABLE}"
 localrules: all, study
 
 wildcard_constraints:
-    value="[A-Za-z0-9.e+-]+",
+    value="[A-Za-z0-9._+-]+",  # deck values such as by_speed; the suffix _seed<n> anchors the match
     seed="[0-9]+",
 
 

@@ -192,6 +192,11 @@ echo "examples: a crumpling deck cut by a timeout continued from its state to th
 # measures of the final wire; a run cut by a timeout continues from its checkpoint
 t0=$SECONDS
 study crumple_study || { tail -n 30 "$tmp/crumple_study.log"; fail "crumple_study"; }
+# a deck value with an underscore (new_contacts=by_speed) is one point like any other
+study crumple_study --dry-run --quiet --config variable=new_contacts 'values=[by_speed]' 'seeds=[1]' ||
+  { tail -n 30 "$tmp/crumple_study.log"; fail "a value with an underscore"; }
+grep -Eq '^point +1( |$)' "$tmp/crumple_study.log" ||
+  { cat "$tmp/crumple_study.log"; fail "the dry run with new_contacts=by_speed does not plan one point"; }
 PYTHONPATH="$repo/python" SLENDER_BIN="$bin" /usr/bin/python3 -m slender run "$repo/examples/crumple2d/classic.lua" \
   -v f=10 -v max_phi=0.3 -v damping=relative -v drag_factor=0.5 -v output=false \
   --json "$tmp/reference_study.json" > /dev/null || fail "the study's reference run"

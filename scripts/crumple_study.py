@@ -36,7 +36,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import workflow_cli  # noqa: E402
 
 RESULT_KEYS = ("phi", "force", "jammed", "ab_ratio", "winding", "loops", "contacts", "wall_contacts", "steps",
-               "wall_s", "s")
+               "wall_s", "s", "fractal_dimension")
 
 
 def shape_measures(pos, r):
@@ -55,7 +55,31 @@ def study_row(result, f, value, seed):
 
 
 KEYS = ["f", "s", "value", "seed", "phi", "force", "jammed", "ab_ratio", "winding", "loops", "contacts",
-        "wall_contacts", "outer_share", "half_width", "steps", "wall_s", "status", "error"]
+        "wall_contacts", "outer_share", "half_width", "fractal_dimension", "steps", "wall_s", "status", "error"]
+
+# the columns of the per-value summary (mean +- standard error over the seeds that ran)
+SUMMARY = [("phi", "phi", 3), ("loops", "loops", 1), ("contacts", "contacts", 0), ("outer_share", "outer share", 2),
+           ("fractal_dimension", "D", 3), ("wall_s", "wall s", 0)]
+
+
+def mean_se(xs):
+    """Mean and standard error of xs (the error is nan for fewer than two)."""
+    xs = np.asarray(xs, dtype=float)
+    se = xs.std(ddof=1) / np.sqrt(len(xs)) if len(xs) > 1 else float("nan")
+    return float(xs.mean()), float(se)
+
+
+def summary_rows(rows):
+    """Per value, in order of appearance: (value, seeds, {key: (mean, se)}) over the rows that ran; a
+    key that no run reported (D from a deck without compute fractal2d) is left out."""
+    out = []
+    for v in dict.fromkeys(r["value"] for r in rows):
+        ok = [r for r in rows if r["value"] == v and r["status"] == "ok"]
+        if not ok:
+            continue
+        stats = {k: mean_se([r[k] for r in ok]) for k, _, _ in SUMMARY if all(k in r for r in ok)}
+        out.append((v, len(ok), stats))
+    return out
 
 
 def value_text(v):
@@ -80,24 +104,38 @@ def write_tables(rows, out, title, label, writer="scripts/crumple_study.py"):
                      f"{r['ab_ratio']:.2f} | {r['winding']:.2f} | {int(r['loops'])} | {int(r['contacts'])} | "
                      f"{int(r['wall_contacts'])} | {r['outer_share']:.2f} | {r['half_width']:.2f} | "
                      f"{int(r['steps'])} | {r['wall_s']:.0f} |\n")
+        summary = summary_rows(rows)
+        if summary:
+            cols = [(k, name, digits) for k, name, digits in SUMMARY if any(k in st for _, _, st in summary)]
+            fh.write(f"\nMean ± standard error over the seeds:\n\n| {label} | seeds | "
+                     + " | ".join(name for _, name, _ in cols) + " |\n|" + "---|" * (len(cols) + 2) + "\n")
+            for v, n, st in summary:
+                cells = [("–" if k not in st else f"{st[k][0]:.{d}f}" if np.isnan(st[k][1])
+                          else f"{st[k][0]:.{d}f} ± {st[k][1]:.{d}f}") for k, _, d in cols]
+                fh.write(f"| {value_text(v)} | {n} | " + " | ".join(cells) + " |\n")
 
 
 def plot(results, values, seeds, out, title, label):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(len(seeds), len(values), figsize=(2.6 * len(values), 2.7 * len(seeds) + 0.5),
-                             squeeze=False)
+    # a row per seed and a column per value; a single value is wrapped into a square-ish grid
+    ncol = len(values) if len(values) > 1 else int(np.ceil(np.sqrt(len(seeds))))
+    nrow = int(np.ceil(len(results) / ncol))
+    fig, axes = plt.subplots(nrow, ncol, figsize=(2.6 * ncol, 2.7 * nrow + 0.5), squeeze=False)
     t = np.linspace(0, 2 * np.pi, 200)
     for (r, xy), ax in zip(results, [ax for row in axes for ax in row]):
         ax.plot(r["f"] * np.cos(t), r["f"] * np.sin(t), color="0.6", lw=0.8)
         if xy is not None:
             ax.plot(xy[:, 0], xy[:, 1], color="k", lw=0.8)
+            d = f", D {r['fractal_dimension']:.3f}" if "fractal_dimension" in r else ""
             ax.set_title(f"{label} = {value_text(r['value'])}, seed {r['seed']}\nA/B {r['ab_ratio']:.2f}, "
-                         f"outer {r['outer_share']:.2f}", fontsize=8)
+                         f"outer {r['outer_share']:.2f}{d}", fontsize=8)
         ax.set_aspect("equal")
         ax.set_xticks([])
         ax.set_yticks([])
+    for ax in [ax for row in axes for ax in row][len(results):]:
+        ax.set_visible(False)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(out + ".png", dpi=110)

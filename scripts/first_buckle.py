@@ -19,7 +19,7 @@ resumable (a run cut short continues from its checkpoint, a finished one is not 
 again), locally on --cores or on Slurm with --profile slurm; the runs stay under --results.
 The functions below measure and draw; the workflow imports them.
 
-  /usr/bin/python3 scripts/first_buckle.py [--f 50 100] [--speeds 0.08 0.02 0.005]
+  /usr/bin/python3 scripts/first_buckle.py [--f 50 100] [--speeds 0.08 0.02 0.005] [--set drag_factor=1]
 """
 import argparse
 import csv
@@ -122,6 +122,8 @@ def main(argv=None):
     ap.add_argument("--speeds", type=float, nargs="+", default=[0.08, 0.02, 0.005])
     ap.add_argument("--feed", type=float, default=0.2, help="wire fed per channel, in cavity radii")
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--set", nargs="*", default=[], metavar="NAME=VALUE",
+                    help="deck variables fixed for every run (-v NAME=VALUE), e.g. drag_factor=1")
     ap.add_argument("--results", default=None,
                     help="the workflow's results folder (default results/first_buckle_<deck>); "
                          "runs already there are not run again")
@@ -132,6 +134,8 @@ def main(argv=None):
     lists = workflow_cli.yaml_list
     cfg = [f"slender={os.path.abspath(a.slender)}", f"results={a.results}", f"deck={a.deck}",
            f"f={lists(a.f)}", f"speeds={lists(a.speeds)}", f"feed={a.feed:g}", f"seed={a.seed}"]
+    if a.set:
+        cfg.append("vars=" + workflow_cli.yaml_vars(a.set))
     done = workflow_cli.run("first_buckle", cfg, a)
     if a.dry_run or done != 0:
         return done

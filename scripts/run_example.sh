@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The main job: sets up (scripts/setup.sh), builds (scripts/build.sh) and runs a small
 # crumpling scene: the classic deck (examples/crumple2d/classic.lua) in a cavity of
-# f = 30 wire diameters until the wire jams, 10-15 s on one core; the deck draws the last
+# f = 30 wire diameters until the wire jams, 30-40 s on one core; the deck draws the last
 # frame as a PNG (python3 -m slender render), and this script says how to open the
 # trajectory in ParaView. Everything goes to out/.
 #
 #   bash scripts/run_example.sh [-v name=value ...]             the crumpling run
-#                                                              (-v f=50: ~1 min, ...)
+#                                                              (-v f=50: ~5 min, ...)
 #   bash scripts/run_example.sh cantilever [-v name=value ...]  the validation case: a
 #                                      clamped wire under a large tip load against the
 #                                      elastica (out/cantilever2d_thermo.csv, .h5, .xdmf)
@@ -43,7 +43,7 @@ done
 rm -f classic.h5 classic.h5.xdmf classic_thermo.csv classic.png classic.log
 echo "run: examples/crumple2d/classic.lua -v f=$f${args[*]:+ ${args[*]}}"
 echo "     a wire pushed from two channels into a circular cavity of radius $f wire"
-echo "     diameters until it jams ($([[ $f == 30 ]] && echo "10-15 s, ")console in out/classic.log)"
+echo "     diameters until it jams ($([[ $f == 30 ]] && echo "30-40 s, ")console in out/classic.log)"
 start=$(date +%s.%N)
 ../build/slender ../examples/crumple2d/classic.lua -v f="$f" ${args[@]+"${args[@]}"} > classic.log 2>&1 || {
   tail -n 20 classic.log
@@ -73,5 +73,5 @@ Open the trajectory in ParaView (press Play to watch the wire fold):
   paraview out/classic.h5.xdmf
 
 (when ParaView asks for a reader, choose "XDMF Reader": it draws each wire as one polyline). Next: a bigger cavity with
-'bash scripts/run_example.sh -v f=50' (about a minute), the other scenes in examples/README.md.
+'bash scripts/run_example.sh -v f=50' (about 5 minutes), the other scenes in examples/README.md.
 EOF

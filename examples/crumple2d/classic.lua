@@ -1,12 +1,12 @@
 -- Purpose: the thesis' classic crumpling scene (W2-1, docs/models.md §7.2): loop cascades
 -- near the wall with two-fold symmetry, run until the wire jams.
--- Expected run time: f = 10 (fast mode, -v fast=1): ~2 s; f = 50: ~1 min; f = 100: ~7 min with -t 2
--- (2.35 M adaptive Verlet steps), ~15 min on one
--- core (3.2 M adaptive Verlet steps; 4.6 h and 73.7 M steps with the old Gear step).
+-- Expected run time (one core): f = 10 (fast mode, -v fast=1): ~1 s; f = 30: ~35 s; f = 50:
+-- ~5 min (2.2 M adaptive Verlet steps, jams near phi = 0.4-0.49); f = 100: 53-90 min (7-8.4 M
+-- steps, phi_jam 0.38-0.44, four seeds; 4.6 h and 73.7 M steps with the old Gear step).
 -- Thesis parameters: f = 100, kappa_theta = 0.04, mu_st = 5, s = 0.08 (feed speed).
--- At f = 100 this feed is too fast for the span to buckle as a whole: the wire folds at the
--- channels and jams at phi = 0.125 away from the wall (docs/crumple2d/timings.md); -v s=0.005
--- gives a centred first buckle at 16 times the steps. The folds come from the weak hardening
--- slope K_h = 0.05 K_e (docs/models.md §2.2 [C]; the thesis gives none): -v hardening=0.8 gives
--- large loops along the wall (docs/crumple2d/hardening_f25.md).
+-- Under the decks' drag before 2026-12-07 (-v drag_factor=1) the wire folded along the feed
+-- axis at f = 100 and jammed at phi = 0.125 away from the wall; that drag over-damped the
+-- wire's slow bending modes (docs/crumple2d/causes.md). With today's converged drag the first
+-- buckle is central and loops reach the wall. The thesis gives no hardening slope; the deck
+-- keeps K_h = 0.05 K_e (docs/models.md §2.2 [C]).
 require("lib.scene").run { name = "classic", f = 100, yield = 0.04, mu = 5.0, s = 0.08 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """scripts/hardening_study.py on the real engine: the hardening slope K_h of the bending
-law decides the classic deck's morphology. With the default K_h = 0.05 K_e the wire folds
+law decides the classic deck's morphology under the drag the deck used until 2026-12-07
+(drag_factor = 1, docs/crumple2d/causes.md). With the default K_h = 0.05 K_e the wire folds
 at plastic hinges along the feed axis and never reaches the wall; with K_h = 0.8 K_e it
 makes large loops that fill the outer ring and touch the wall (the thesis' classic
 picture). If the hysteresis law ignored K_h, both runs would look alike."""
@@ -33,6 +34,7 @@ def main():
         out = os.path.join(tmp, "hs")
         p = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "hardening_study.py"), "--slender",
                             slender, "--f", "12", "--ratios", "0.05", "0.8", "--seeds", "1", "--max-phi", "0.3",
+                            "--set", "drag_factor=1",
                             "--out", out, "--results", os.path.join(tmp, "results"), "--cores", "2"],
                            capture_output=True, text=True)
         assert p.returncode == 0, p.stdout + p.stderr

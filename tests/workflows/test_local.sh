@@ -209,10 +209,15 @@ assert [r["value"] for r in rows] == ["absolute", "relative"], rows
 for r in rows:
     assert r["status"] == "ok" and 0.29 < float(r["phi"]) < 0.35, r
     assert 0 < float(r["outer_share"]) < 1 and 0 < float(r["half_width"]) < 1, r
+    assert 1 < float(r["fractal_dimension"]) < 2, r  # the deck's D, carried into the table
 relative = rows[1]
 for key in ("phi", "steps", "contacts", "loops"):  # the row is the deck's RESULT
     assert float(relative[key]) == float(reference[key]), (key, relative[key], reference[key])
-assert "| relative | 1 |" in open(os.path.join(results, "classic_f10_damping.md")).read()
+md = open(os.path.join(results, "classic_f10_damping.md")).read()
+assert "| relative | 1 |" in md
+# the per-value summary: one seed each, so the means alone (no standard error)
+summary = md[md.index("Mean ± standard error"):]
+assert f"| relative | 1 | {float(relative['phi']):.3f} | {float(relative['loops']):.1f} |" in summary, summary
 assert os.path.getsize(os.path.join(results, "classic_f10_damping.png")) > 1000
 PY
 cut=(--config slender="$bin" f=16 'values=[relative]' checkpoint_every=2000)

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "helpers.hpp"
+#include "raster2d.hpp"
 
 using namespace slender;
 using namespace slender::test;
@@ -221,4 +222,81 @@ TEST(Fractal2dCompute, ReusedImageForgetsTheLastShape) {
     x[i] = Vec3(-45.0 + spacing * static_cast<double>(i), 0.3, 0);
   ++sim.state_epoch;
   EXPECT_NEAR(sim.column("D.D"), 1.0, 0.05);
+}
+
+// The disc masses come from per-row pixel counts; they must be the plain count of the
+// method's definition: every wire pixel whose centre lies within rho of the sandbox centre,
+// tested one by one over the whole image. A crumpled random walk, off-centre discs.
+TEST(Fractal2dCompute, DiscMassesAreThePlainPixelCounts) {
+  Simulation sim(2, 1);
+  std::vector<Vec3> pts{Vec3(0.3, -0.2, 0)};
+  unsigned state = 12345u;
+  auto uniform = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) / 16777216.0;
+  };
+  double angle = 0.0;
+  const double R = 30.0;
+  while (pts.size() < 1500) {
+    angle += 1.2 * (uniform() - 0.5);
+    Vec3 next = pts.back() + Vec3(std::cos(angle), std::sin(angle), 0);
+    if (next.head<2>().norm() > R - 2) {  // turn back from the wall
+      angle += M_PI;
+      continue;
+    }
+    pts.push_back(next);
+  }
+  const Chain& chain = sim.add_chain("w", pts, 1.0, false);
+  const double rho_min = 1.5, rho_max = 0.45, pixel = 0.25;
+  const int radii = 7, centres = 40;
+  sim.add_compute("D", "fractal2d",
+                  P({{"radius", R},
+                     {"rho_min", rho_min},
+                     {"rho_max", rho_max},
+                     {"radii", static_cast<double>(radii)},
+                     {"centres", static_cast<double>(centres)},
+                     {"pixel", pixel}}));
+  const double D = sim.column("D.D"), D_err = sim.column("D.D_err");
+
+  WireRaster img(Vec3::Zero(), R, pixel);
+  std::vector<const Chain*> chains{&chain};
+  img.draw_chains(sim, chains, 0.5);
+  std::vector<Vec3> eligible;
+  for (const Vec3& x : pts)
+    if (x.head<2>().norm() + rho_max * R <= R) eligible.push_back(x);
+  ASSERT_GE(eligible.size(), static_cast<std::size_t>(centres));
+  std::vector<double> logr(radii), mean(radii, 0.0), slopes;
+  for (int k = 0; k < radii; ++k)
+    logr[k] = std::log(rho_min * std::pow(rho_max * R / rho_min, k / (radii - 1.0)));
+  auto fit = [&](const std::vector<double>& y) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int k = 0; k < radii; ++k) {
+      sx += logr[k], sy += y[k], sxx += logr[k] * logr[k], sxy += logr[k] * y[k];
+    }
+    return (radii * sxy - sx * sy) / (radii * sxx - sx * sx);
+  };
+  for (int q = 0; q < centres; ++q) {
+    const Vec3& c = eligible[(static_cast<std::size_t>(q) * eligible.size()) / centres];
+    std::vector<double> logm(radii);
+    for (int k = 0; k < radii; ++k) {
+      const double rho = std::exp(logr[k]);
+      double m = 0;
+      for (int j = 0; j < img.size(); ++j)
+        for (int i = 0; i < img.size(); ++i) {
+          const double dx = img.px(i) - c.x(), dy = img.py(j) - c.y();
+          if (img.state(i, j) == WireRaster::kWire && dx * dx + dy * dy <= rho * rho) m += 1;
+        }
+      mean[k] += m / centres;
+      logm[k] = std::log(std::max(m, 1.0));
+    }
+    slopes.push_back(fit(logm));
+  }
+  for (auto& v : mean) v = std::log(v);
+  EXPECT_NEAR(D, fit(mean), 1e-9);
+  double avg = 0, var = 0;
+  for (double s : slopes) avg += s / centres;
+  for (double s : slopes) var += (s - avg) * (s - avg);
+  EXPECT_NEAR(D_err, std::sqrt(var / (centres - 1) / centres), 1e-9);
+  EXPECT_GT(D, 1.2);  // a crumpled walk: between a line and the plane
+  EXPECT_LT(D, 1.95);
 }

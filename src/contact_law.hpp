@@ -57,22 +57,24 @@ class NodeStiffness {
   void finish(const std::vector<double>& mass) {
     std::vector<double>& k0 = parts_[0].k_;
     std::array<double, kMaxThreads> w2{};
-    const int T = parallel_ranges(static_cast<int>(used_), k0.size(),
-                                  [&](int tid, std::size_t begin, std::size_t end) {
-                                    double m = 0.0;
-                                    for (std::size_t t = 1; t < used_; ++t) {
-                                      std::vector<double>& kt = parts_[t].k_;
-                                      for (std::size_t u = begin; u < end; ++u) {
-                                        k0[u] += kt[u];
-                                        kt[u] = 0.0;
-                                      }
-                                    }
-                                    for (std::size_t u = begin; u < end; ++u) {
-                                      if (k0[u] != 0.0) m = std::max(m, k0[u] / mass[u]);
-                                      k0[u] = 0.0;
-                                    }
-                                    w2[static_cast<std::size_t>(tid)] = m;
-                                  });
+    const int T = parallel_ranges(
+        static_cast<int>(used_), k0.size(),
+        [&](int tid, std::size_t begin, std::size_t end) {
+          double m = 0.0;
+          for (std::size_t t = 1; t < used_; ++t) {
+            std::vector<double>& kt = parts_[t].k_;
+            for (std::size_t u = begin; u < end; ++u) {
+              k0[u] += kt[u];
+              kt[u] = 0.0;
+            }
+          }
+          for (std::size_t u = begin; u < end; ++u) {
+            if (k0[u] != 0.0) m = std::max(m, k0[u] / mass[u]);
+            k0[u] = 0.0;
+          }
+          w2[static_cast<std::size_t>(tid)] = m;
+        },
+        kMinLightItemsPerThread);
     double m = 0.0;
     for (int t = 0; t < T; ++t) m = std::max(m, w2[static_cast<std::size_t>(t)]);
     omega_ = std::sqrt(m);

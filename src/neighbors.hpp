@@ -85,11 +85,15 @@ class NeighborService {
       ++scans_;
       // on the threads' node ranges, as the kernels take them (threads.hpp)
       std::array<char, kMaxThreads> moved{};
-      const int T = parallel_ranges(threads_, x.size(), [&](int tid, std::size_t b, std::size_t e) {
-        bool any = false;
-        for (std::size_t i = b; i < e && !any; ++i) any = (x[i] - x_[i]).squaredNorm() > half_skin2;
-        moved[static_cast<std::size_t>(tid)] = any;
-      });
+      const int T = parallel_ranges(
+          threads_, x.size(),
+          [&](int tid, std::size_t b, std::size_t e) {
+            bool any = false;
+            for (std::size_t i = b; i < e && !any; ++i)
+              any = (x[i] - x_[i]).squaredNorm() > half_skin2;
+            moved[static_cast<std::size_t>(tid)] = any;
+          },
+          kMinLightItemsPerThread);
       for (int t = 0; t < T; ++t) all = all || moved[static_cast<std::size_t>(t)];
     }
     if (!all) return;

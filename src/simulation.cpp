@@ -340,39 +340,45 @@ void Simulation::compute_forces() {
   // the force array over and back at every step.
   const int T = threads();
   const size_t N = nodes_.f.size();
-  parallel_ranges(T, N, [&](int, size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) nodes_.f[i].setZero();
-    for (auto& c : coords_) {
-      auto& f = c->f->values();
-      for (size_t i = begin; i < std::min(end, f.size()); ++i) f[i].setZero();
-    }
-  });
+  parallel_ranges(
+      T, N,
+      [&](int, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) nodes_.f[i].setZero();
+        for (auto& c : coords_) {
+          auto& f = c->f->values();
+          for (size_t i = begin; i < std::min(end, f.size()); ++i) f[i].setZero();
+        }
+      },
+      kMinLightItemsPerThread);
   for (auto& [k, e] : energy_) e = 0.0;
   schedule_.forces(*this, energy_);
   // the constrain stage
-  parallel_ranges(T, N, [&](int, size_t begin, size_t end) {
-    if (dof_mask_) {
-      auto& m = dof_mask_->values();
-      for (size_t i = begin; i < std::min(end, m.size()); ++i)
-        if (m[i])
-          for (int c = 0; c < 3; ++c)
-            if (m[i] & (1 << c)) nodes_.f[i][c] = 0.0;
-    }
-    if (dim_ == 2)
-      for (size_t i = begin; i < end; ++i) nodes_.f[i].z() = 0.0;
-    for (auto& c : coords_) {
-      auto& f = c->f->values();
-      auto& q = c->q->values();
-      auto& fixed = c->fixed->values();
-      for (size_t i = begin; i < std::min(end, f.size()); ++i) {
-        if (fixed[i]) {
-          f[i].setZero();
-        } else if (c->unit) {
-          f[i] -= (f[i].dot(q[i]) / q[i].squaredNorm()) * q[i];  // tangent to |q| = 1
+  parallel_ranges(
+      T, N,
+      [&](int, size_t begin, size_t end) {
+        if (dof_mask_) {
+          auto& m = dof_mask_->values();
+          for (size_t i = begin; i < std::min(end, m.size()); ++i)
+            if (m[i])
+              for (int c = 0; c < 3; ++c)
+                if (m[i] & (1 << c)) nodes_.f[i][c] = 0.0;
         }
-      }
-    }
-  });
+        if (dim_ == 2)
+          for (size_t i = begin; i < end; ++i) nodes_.f[i].z() = 0.0;
+        for (auto& c : coords_) {
+          auto& f = c->f->values();
+          auto& q = c->q->values();
+          auto& fixed = c->fixed->values();
+          for (size_t i = begin; i < std::min(end, f.size()); ++i) {
+            if (fixed[i]) {
+              f[i].setZero();
+            } else if (c->unit) {
+              f[i] -= (f[i].dot(q[i]) / q[i].squaredNorm()) * q[i];  // tangent to |q| = 1
+            }
+          }
+        }
+      },
+      kMinLightItemsPerThread);
   forces_valid = true;
 }
 

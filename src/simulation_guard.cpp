@@ -149,25 +149,28 @@ void Simulation::check_guard(long) {
     size_t imax = 0;
   };
   std::array<Scan, kMaxThreads> scans{};
-  const int T = parallel_ranges(threads(), n, [&](int tid, size_t begin, size_t end) {
-    Scan s;
-    for (size_t i = begin; i < end; ++i) {
-      if (s.bad == SIZE_MAX) {
-        if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite()) {
-          s.bad = i;
-        } else if (!nodes_.f[i].allFinite()) {
-          s.bad = i;
-          s.bad_force = true;
+  const int T = parallel_ranges(
+      threads(), n,
+      [&](int tid, size_t begin, size_t end) {
+        Scan s;
+        for (size_t i = begin; i < end; ++i) {
+          if (s.bad == SIZE_MAX) {
+            if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite()) {
+              s.bad = i;
+            } else if (!nodes_.f[i].allFinite()) {
+              s.bad = i;
+              s.bad_force = true;
+            }
+          }
+          const double sp = nodes_.v[i].norm();
+          if (sp > s.vmax) {
+            s.vmax = sp;
+            s.imax = i;
+          }
         }
-      }
-      const double sp = nodes_.v[i].norm();
-      if (sp > s.vmax) {
-        s.vmax = sp;
-        s.imax = i;
-      }
-    }
-    scans[static_cast<size_t>(tid)] = s;
-  });
+        scans[static_cast<size_t>(tid)] = s;
+      },
+      kMinLightItemsPerThread);
   double vmax = 0.0;
   size_t imax = 0;
   for (int t = 0; t < T; ++t) {

@@ -29,6 +29,12 @@ namespace slender {
 // Below this many work items per thread a kernel runs serially: the cost of waking the
 // threads (a few microseconds) would exceed the work.
 inline constexpr std::size_t kMinItemsPerThread = 256;
+// The same for light passes over the nodes (a few flops per node: the integrator's
+// updates, zeroing, the drag, the wall, the guard's scan). A parallel region cost 3.7 us
+// on the 2-core development machine, as much as such a pass over 4 000-8 000 nodes; with
+// these passes threaded, two threads ran the crumpling decks at 2 900-4 400 nodes 1.3-1.4x
+// slower than one (docs/performance.md, "Light passes on one thread below 8 192 nodes").
+inline constexpr std::size_t kMinLightItemsPerThread = 4096;
 // A scene smaller than this runs on one thread (Simulation::threads_min_nodes; measured,
 // docs/performance.md "Threads"). SLENDER_THREADS_MIN_NODES overrides it.
 inline constexpr std::size_t kThreadsMinNodes = 2000;
@@ -43,15 +49,17 @@ inline void thread_range(std::size_t n, int threads, int tid, std::size_t& begin
   end = n * (t + 1) / T;
 }
 
-// How many threads a kernel of n items uses out of the simulation's `threads`.
-inline int threads_for(std::size_t n, int threads) {
+// How many threads a kernel of n items uses out of the simulation's `threads`, at least
+// `grain` items each.
+inline int threads_for(std::size_t n, int threads, std::size_t grain = kMinItemsPerThread) {
 #ifdef _OPENMP
-  const std::size_t most = std::max<std::size_t>(1, n / kMinItemsPerThread);
+  const std::size_t most = std::max<std::size_t>(1, n / grain);
   return static_cast<int>(
       std::min<std::size_t>(static_cast<std::size_t>(std::min(threads, kMaxThreads)), most));
 #else
   (void)n;
   (void)threads;
+  (void)grain;
   return 1;
 #endif
 }
@@ -112,11 +120,13 @@ double parallel_forces(int threads, ForceScratch& scratch, std::vector<Vec3>& f,
   return sum;
 }
 
-// Runs body(tid, begin, end) over [0, n) on up to `threads` threads (work on distinct
-// items, nothing to reduce: integrators, per-node fixes). Returns the thread count used.
+// Runs body(tid, begin, end) over [0, n) on up to `threads` threads, at least `grain` items
+// each (work on distinct items, nothing to reduce: integrators, per-node fixes; light
+// passes over the nodes take kMinLightItemsPerThread). Returns the thread count used.
 template <class Body>
-int parallel_ranges(int threads, std::size_t n, Body&& body) {
-  const int T = threads_for(n, threads);
+int parallel_ranges(int threads, std::size_t n, Body&& body,
+                    std::size_t grain = kMinItemsPerThread) {
+  const int T = threads_for(n, threads, grain);
   if (T <= 1) {
     body(0, std::size_t{0}, n);
     return 1;

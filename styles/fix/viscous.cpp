@@ -25,9 +25,12 @@ class ViscousDampingFix : public FixStyle {
     auto& f = sim.nodes().f;
     auto& v = sim.nodes().v;
     // each node is its own work item (threads.hpp)
-    parallel_ranges(sim.threads(), nodes_.size(), [&](int, std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) f[nodes_[k]] -= gamma_ * v[nodes_[k]];
-    });
+    parallel_ranges(
+        sim.threads(), nodes_.size(),
+        [&](int, std::size_t begin, std::size_t end) {
+          for (std::size_t k = begin; k < end; ++k) f[nodes_[k]] -= gamma_ * v[nodes_[k]];
+        },
+        kMinLightItemsPerThread);
     return 0.0;
   }
   // Explicit schemes need gamma dt / m below ~1; report gamma/m as a rate.

@@ -100,7 +100,8 @@ class SphereWallFix : public FixStyle {
     std::array<Part, kMaxThreads> parts{};
     stiffness_.prepare(sim.threads(), sim.nodes().size());
     const int T = parallel_ranges(
-        sim.threads(), nodes_.size(), [&](int tid, std::size_t begin, std::size_t end) {
+        sim.threads(), nodes_.size(),
+        [&](int tid, std::size_t begin, std::size_t end) {
           Part& part = parts[static_cast<std::size_t>(tid)];
           NodeStiffness::Part& stiff = stiffness_.part(tid);
           for (std::size_t k = begin; k < end; ++k) {
@@ -138,7 +139,8 @@ class SphereWallFix : public FixStyle {
             part.total += fn;
             ++part.contacts;
           }
-        });
+        },
+        kMinLightItemsPerThread);
     double e = 0.0;
     total_ = 0.0;
     contacts_ = 0;

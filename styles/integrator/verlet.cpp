@@ -40,32 +40,38 @@ class VelocityVerletIntegrator : public IntegratorStyle {
     const size_t N = n.n_owned();
     const int T = sim.threads();
     // nodes are independent here: one contiguous range per thread (threads.hpp)
-    parallel_ranges(T, N, [&](int, size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
-        n.x[i] += h * n.v[i];
-      }
-      // generalised coordinates (rod quaternions) the same way, then back onto |q| = 1
-      for (auto& c : sim.extra_coordinates())
-        for (size_t i = begin; i < end; ++i) {
-          if ((*c->fixed)[i]) continue;
-          Vec4& v = (*c->v)[i];
-          v += (0.5 * h / (*c->m)[i]) * (*c->f)[i];
-          (*c->q)[i] += h * v;
-          if (c->unit) c->constrain(i, {&v});
-        }
-    });
+    parallel_ranges(
+        T, N,
+        [&](int, size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) {
+            n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
+            n.x[i] += h * n.v[i];
+          }
+          // generalised coordinates (rod quaternions) the same way, then back onto |q| = 1
+          for (auto& c : sim.extra_coordinates())
+            for (size_t i = begin; i < end; ++i) {
+              if ((*c->fixed)[i]) continue;
+              Vec4& v = (*c->v)[i];
+              v += (0.5 * h / (*c->m)[i]) * (*c->f)[i];
+              (*c->q)[i] += h * v;
+              if (c->unit) c->constrain(i, {&v});
+            }
+        },
+        kMinLightItemsPerThread);
     sim.compute_forces();
-    parallel_ranges(T, N, [&](int, size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
-      for (auto& c : sim.extra_coordinates())
-        for (size_t i = begin; i < end; ++i) {
-          if ((*c->fixed)[i]) continue;
-          Vec4& v = (*c->v)[i];
-          v += (0.5 * h / (*c->m)[i]) * (*c->f)[i];
-          if (c->unit) v -= v.dot((*c->q)[i]) * (*c->q)[i];
-        }
-    });
+    parallel_ranges(
+        T, N,
+        [&](int, size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) n.v[i] += (0.5 * h / n.mass[i]) * n.f[i];
+          for (auto& c : sim.extra_coordinates())
+            for (size_t i = begin; i < end; ++i) {
+              if ((*c->fixed)[i]) continue;
+              Vec4& v = (*c->v)[i];
+              v += (0.5 * h / (*c->m)[i]) * (*c->f)[i];
+              if (c->unit) v -= v.dot((*c->q)[i]) * (*c->q)[i];
+            }
+        },
+        kMinLightItemsPerThread);
     sim.end_of_step();
   }
 

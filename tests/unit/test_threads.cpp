@@ -132,6 +132,22 @@ TEST(Threads, RangesCoverTheWorkOnceInOrder) {
   EXPECT_EQ(threads_for(100, 2), 1);
   EXPECT_EQ(threads_for(100000, 2), 2);
   EXPECT_EQ(threads_for(100000, 1000), kMaxThreads);
+  // light passes over the nodes take a thread per kMinLightItemsPerThread nodes: a chain of
+  // a few thousand nodes runs them serially while its force kernels use two threads
+  EXPECT_EQ(threads_for(3000, 2), 2);
+  EXPECT_EQ(threads_for(3000, 2, kMinLightItemsPerThread), 1);
+  EXPECT_EQ(threads_for(2 * kMinLightItemsPerThread - 1, 2, kMinLightItemsPerThread), 1);
+  EXPECT_EQ(threads_for(2 * kMinLightItemsPerThread, 2, kMinLightItemsPerThread), 2);
+  int used = 0;
+  std::vector<int> seen(3000, 0);
+  used = parallel_ranges(
+      2, seen.size(),
+      [&](int, std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) ++seen[i];
+      },
+      kMinLightItemsPerThread);
+  EXPECT_EQ(used, 1);
+  for (int v : seen) EXPECT_EQ(v, 1);
 }
 
 TEST(Threads, ThreadCountIsValidated) {

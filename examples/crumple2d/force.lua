@@ -3,7 +3,7 @@
 -- to rest, and the force on the channel nodes is read; then the feed goes on, up
 -- to jamming. Writes force_samples.csv (phi, force, ...); scripts/crumple_stats.py fits
 -- F ~ (phi_c - phi)^beta.
--- Expected run time: f = 10 (fast mode, -v fast=1): ~1 min; f = 25: about an hour.
+-- Expected run time (one core): f = 10 (fast mode, -v fast=1): ~4 s; f = 25: ~1 min; f = 35: ~3 min.
 -- (Cavities below f = 10 jam at once: the buckled wire grips the wall, mu_st = 5.)
 -- Thesis parameters: f = 25, kappa_theta = 0.08, mu_st = 5, s = 0.05 (feed speed;
 -- 0.06 in the thesis' text). Elastic variant: -v yield=4.

@@ -335,9 +335,10 @@ Coordinates& Simulation::coordinates(const std::string& name) {
 void Simulation::compute_forces() {
   if (schedule_dirty_) build_schedule();
   neighbors_.begin_evaluation(threads());
-  // The passes over every node take the threads' node ranges of the kernels and the
-  // integrator (threads.hpp): a serial pass here would pull the other cores' halves of
-  // the force array over and back at every step.
+  // The passes over every node are light: serial below 2 kMinLightItemsPerThread nodes,
+  // where a parallel region costs more than the pass; above, on the threads' node ranges
+  // of the kernels and the integrator, so that no core pulls the others' halves of the
+  // force array over (threads.hpp).
   const int T = threads();
   const size_t N = nodes_.f.size();
   parallel_ranges(

@@ -33,6 +33,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import causes_table  # noqa: E402
 import workflow_cli  # noqa: E402
 
 RESULT_KEYS = ("phi", "force", "jammed", "ab_ratio", "winding", "loops", "contacts", "wall_contacts", "steps",
@@ -62,23 +63,16 @@ SUMMARY = [("phi", "phi", 3), ("loops", "loops", 1), ("contacts", "contacts", 0)
            ("fractal_dimension", "D", 3), ("wall_s", "wall s", 0)]
 
 
-def mean_se(xs):
-    """Mean and standard error of xs (the error is nan for fewer than two)."""
-    xs = np.asarray(xs, dtype=float)
-    se = xs.std(ddof=1) / np.sqrt(len(xs)) if len(xs) > 1 else float("nan")
-    return float(xs.mean()), float(se)
-
-
 def summary_rows(rows):
-    """Per value, in order of appearance: (value, seeds, {key: (mean, se)}) over the rows that ran; a
-    key that no run reported (D from a deck without compute fractal2d) is left out."""
+    """Per value, in order of appearance: (value, seeds, {key: values}) over the rows that ran; a key
+    that no run reported (D from a deck without compute fractal2d) is left out."""
     out = []
     for v in dict.fromkeys(r["value"] for r in rows):
         ok = [r for r in rows if r["value"] == v and r["status"] == "ok"]
         if not ok:
             continue
-        stats = {k: mean_se([r[k] for r in ok]) for k, _, _ in SUMMARY if all(k in r for r in ok)}
-        out.append((v, len(ok), stats))
+        values = {k: [float(r[k]) for r in ok] for k, _, _ in SUMMARY if all(k in r for r in ok)}
+        out.append((v, len(ok), values))
     return out
 
 
@@ -110,8 +104,7 @@ def write_tables(rows, out, title, label, writer="scripts/crumple_study.py"):
             fh.write(f"\nMean ± standard error over the seeds:\n\n| {label} | seeds | "
                      + " | ".join(name for _, name, _ in cols) + " |\n|" + "---|" * (len(cols) + 2) + "\n")
             for v, n, st in summary:
-                cells = [("–" if k not in st else f"{st[k][0]:.{d}f}" if np.isnan(st[k][1])
-                          else f"{st[k][0]:.{d}f} ± {st[k][1]:.{d}f}") for k, _, d in cols]
+                cells = [causes_table.mean_se(st.get(k, []), d) for k, _, d in cols]
                 fh.write(f"| {value_text(v)} | {n} | " + " | ".join(cells) + " |\n")
 
 

@@ -78,6 +78,7 @@ def main():
     rc = lambda p: 0.5 * (1 + np.sqrt(1 + 4 * 50.0 ** 2 * (1 - p)))
     assert abs(rc(1.0) - 1.0) < 1e-12 and abs(rc(0.0) - 50.0) < 1
     causes_table_means_and_errors()
+    wire_gallery_draws_each_wire()
     print("crumple scripts: ok")
 
 
@@ -98,6 +99,39 @@ def causes_table_means_and_errors():
     # mean 0.4, standard error sqrt(0.02 / 2) = 0.1; the failed seed is named
     assert rows[0].startswith("| drag = 0.1 | 2 (1 failed) | 0.400 ± 0.100 |"), rows[0]
     assert rows[1].startswith("| drag = 1 | 1 | 2.000 |"), rows[1]
+
+
+def wire_gallery_draws_each_wire():
+    """scripts/wire_gallery.py: a panel per wire, ink where the wire lies and none in an empty
+    cavity; a run without its record is refused by name."""
+    import json
+
+    import matplotlib.image
+    with tempfile.TemporaryDirectory() as tmp:
+        t = np.linspace(0, 2 * np.pi, 400)
+        runs = []
+        for name, xy in (("ring", np.c_[5 * np.cos(t), 5 * np.sin(t)]), ("line", np.c_[np.linspace(-9, 9, 50), 0 * t[:50]])):
+            np.save(os.path.join(tmp, name + ".npy"), xy)
+            with open(os.path.join(tmp, name + ".json"), "w") as fh:
+                json.dump({"result": {"f": 10, "phi": 0.1, "ab_ratio": 1.0, "loops": 0, "wall_contacts": 0}}, fh)
+            runs.append(f"{name}, f = 10={os.path.join(tmp, name + '.npy')}")
+        out = os.path.join(tmp, "g.png")
+        r = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "wire_gallery.py"), out, *runs],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        dark = matplotlib.image.imread(out)[..., :3].mean(axis=2) < 0.3  # the wire, not the grey wall
+        w = dark.shape[1]
+        left, right = dark[:, : w // 2], dark[:, w // 2:]
+        # the line is one long dark row across its panel; the ring crosses its panel's middle
+        # column twice and makes no long row
+        assert right.mean(axis=1).max() > 0.7, "no line drawn"
+        assert left.mean(axis=1).max() < 0.45, "a long dark row in the ring's panel"
+        column = left[left.shape[0] // 8:, w // 4].astype(int)  # below the titles
+        assert np.count_nonzero(np.diff(column) == 1) == 2, "the ring is not crossed twice"
+        os.remove(os.path.join(tmp, "line.json"))
+        r = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "wire_gallery.py"), out, runs[1]],
+                           capture_output=True, text=True)
+        assert r.returncode != 0 and "line.json" in r.stderr, r.stderr
 
 
 if __name__ == "__main__":

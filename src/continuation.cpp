@@ -21,13 +21,9 @@ std::string g6(double v) {
 ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt) {
   Style* fix = sim.find_style(opt.load);
   if (!fix)
-    throw InputError("continuation: load must name a fix or a shell, and there is no style '" +
-                     opt.load + "'");
-  if (!fix->set_load_factor(1.0))
     throw InputError(
-        "continuation: " + std::string(fix->family_name()) + " '" + opt.load + "' (" +
-        fix->style_name() +
-        ") has no load to scale (force/constant, moment2d, prescribe and koiter have)");
+        "continuation: load must name a fix, a shell or a growth, and there is no style '" +
+        opt.load + "'");
   if (!(opt.ds > 0) || !(opt.ds_max >= opt.ds) || !(opt.ds_min > 0) || !(opt.ds_min <= opt.ds))
     throw InputError("continuation: the steps need 0 < ds_min <= ds <= ds_max, got ds_min = " +
                      g6(opt.ds_min) + ", ds = " + g6(opt.ds) + ", ds_max = " + g6(opt.ds_max));
@@ -36,6 +32,12 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
                      " lies outside [lambda_min, lambda_max] = [" + g6(opt.lambda_min) + ", " +
                      g6(opt.lambda_max) + "]");
   require_positions_only(sim, "continuation");
+  if (!fix->set_load_factor(opt.lambda0))
+    throw InputError(
+        "continuation: " + std::string(fix->family_name()) + " '" + opt.load + "' (" +
+        fix->style_name() +
+        ") has no load to scale (force/constant, moment2d, prescribe and koiter have; growth "
+        "econe walks phi_e)");
 
   auto& n = sim.nodes();
   const size_t N = n.n_owned();
@@ -51,8 +53,10 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
   set_lambda(0.0);
   sim.compute_forces();
   q -= sys.forces();
-  if (!(q.norm() > 0))
+  if (!(q.norm() > 0)) {
+    set_lambda(opt.lambda0);
     throw InputError("continuation: the load of '" + opt.load + "' acts on no free component");
+  }
   double lambda = opt.lambda0;
   set_lambda(lambda);
   sim.compute_forces();

@@ -261,8 +261,9 @@ ParamSpec continuation_spec() {
               "directions changes (limit and bifurcation points); returns the points taken and "
               "the last lambda");
   s.string("load",
-           "id of the style whose load lambda scales (fixes force/constant, moment2d; shell "
-           "koiter: load, line_load, line_moment, pressure)")
+           "id of the style whose load lambda scales (fixes force/constant, moment2d, "
+           "prescribe; shell koiter: load, line_load, line_moment, pressure), or growth econe, "
+           "whose excess angle phi_e is lambda")
       .required();
   s.real("lambda0",
          "load factor at the start (the state must be, or Newton must reach, an "

@@ -16,7 +16,11 @@ class EconeGrowth : public GrowthStyle {
     ParamSpec s("growth", name,
                 "e-cone law: circumferential growth g = 1 + phi_e/(2 pi) about an axis "
                 "(docs/models.md §6.9, (5.37))");
-    s.real("phi_e", "excess angle (radians); sim:modify can change it").def(0.0).min(-2 * M_PI);
+    s.real("phi_e",
+           "excess angle (radians); sim:modify can change it, sim:continuation{load = id} "
+           "walks it")
+        .def(0.0)
+        .min(-2 * M_PI);
     s.vector("center", "a point on the axis").def(std::vector<double>{0, 0, 0}).length(3, 3);
     s.vector("axis", "direction of the axis (the disc normal)")
         .def(std::vector<double>{0, 0, 1})
@@ -47,6 +51,14 @@ class EconeGrowth : public GrowthStyle {
     if (!full.count("axis")) full["axis"] = std::vector<double>{z_.x(), z_.y(), z_.z()};
     read(spec(style_name()).validate(full));
     bump();
+  }
+  // sim:continuation{load = id} walks phi_e (docs/models.md §9.4): the e-cone's branches
+  // and their stability in the excess angle
+  bool set_load_factor(double lambda) override {
+    if (lambda < -2 * M_PI) return false;
+    phi_e_ = lambda;
+    bump();
+    return true;
   }
   double value(const std::string& key) const override {
     if (key == "phi_e") return phi_e_;

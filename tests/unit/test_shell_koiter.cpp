@@ -678,3 +678,56 @@ TEST(Newmark, AdaptiveStepFollowsTheErrorEstimate) {
 }
 
 #endif
+
+// The e-cone's symmetric branch (examples/shells/econe_bifurcation.lua) can be followed only
+// if forces and Hessian keep the disc's mirror symmetries: on a mirror-symmetric state of the
+// symmetric hexagonal disc, mirroring x -> -x maps the Hessian onto itself (entries of mirror
+// nodes, the x rows and columns change sign). A ghost rule, quadrature or irregular patch
+// evaluated in an orientation of its own would break it.
+TEST(KoiterShell, HessianKeepsTheDiscsMirrorSymmetry) {
+  const shell::TriMesh m = shell::make_disc(1.0, 3);
+  auto sim = std::make_unique<Simulation>(3, 2);
+  sim->verbose = false;
+  shell::add_surface(*sim, "s", m, 0.0);
+  sim->add_growth("g", "econe", P({{"phi_e", 3.0}}));
+  sim->add_shell("koiter", P({{"mesh", std::string("s")},
+                              {"thickness", 0.05},
+                              {"boundary", std::string("mirror")},
+                              {"growth", std::string("g")}}));
+  const int M = m.n_nodes();
+  auto& n = sim->nodes();
+  for (int i = 0; i < M; ++i) {
+    const Vec3 X = m.x[i];
+    n.x[i].z() = 0.1 * (X.x() * X.x() - X.y() * X.y()) + 0.02 * X.x() * X.x() * X.x() * X.x();
+  }
+  std::vector<int> mirror(M, -1);
+  for (int i = 0; i < M; ++i)
+    for (int j = 0; j < M; ++j)
+      if ((m.x[j] - Vec3(-m.x[i].x(), m.x[i].y(), m.x[i].z())).norm() < 1e-12) mirror[i] = j;
+  for (int i = 0; i < M; ++i) ASSERT_GE(mirror[i], 0) << "node " << i << " has no mirror image";
+  sim->compute_forces();
+  double fmax = 0, ferr = 0;
+  for (int i = 0; i < M; ++i) {
+    const Vec3 f = n.f[i], g = n.f[mirror[i]];
+    fmax = std::max(fmax, f.norm());
+    ferr = std::max(ferr, (f - Vec3(-g.x(), g.y(), g.z())).norm());
+  }
+  EXPECT_GT(fmax, 1e-3);
+  EXPECT_LT(ferr, 1e-12 * fmax);
+  Hessian H;
+  ASSERT_TRUE(sim->shells().front()->add_hessian(sim->context(), H));
+  const int N = static_cast<int>(n.size());
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * N, 3 * N);
+  for (const auto& t : H.triplets()) K(t.row(), t.col()) += t.value();
+  const double s[3] = {-1, 1, 1};
+  double err = 0;
+  for (int i = 0; i < M; ++i)
+    for (int j = 0; j < M; ++j)
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d)
+          err = std::max(err, std::abs(K(3 * i + c, 3 * j + d) -
+                                       s[c] * s[d] * K(3 * mirror[i] + c, 3 * mirror[j] + d)));
+  EXPECT_LT(err, 1e-10 * K.cwiseAbs().maxCoeff());
+  // and nothing of the Hessian lands on the ghosts, which the rules place
+  EXPECT_EQ(K.bottomRows(3 * (N - M)).cwiseAbs().maxCoeff(), 0.0);
+}

@@ -4,8 +4,9 @@
 local slender = require("slender")
 local M = {}
 
--- opts: fast, h, edge, out, mu_static (contact friction, 0: frictionless); deck -v values
--- override the defaults the same way in every e-cone deck.
+-- opts: fast, h, edge, out, mu_static (contact friction, 0: frictionless), and the defaults of
+-- noise, mode and minimizer where a deck wants others; deck -v values override the defaults the
+-- same way in every e-cone deck.
 function M.build(opts)
   local fast = opts.fast
   local s = {}
@@ -24,7 +25,7 @@ function M.build(opts)
   local sim = slender.simulation{dimension = 3, seed = slender.var("seed", 1)}
   s.sim = sim
   s.inner = slender.var("inner", 0)
-  local noise = slender.var("noise", 1e-4)  -- out-of-plane noise amplitude (docs/models.md §6.12)
+  local noise = slender.var("noise", opts.noise or 1e-4)  -- out-of-plane noise amplitude (docs/models.md §6.12)
   if s.inner > 0 then
     s.nodes, s.tris = sim:mesh{name = "disc", shape = "ring", radius = 1, inner_radius = s.inner,
                                edge = s.edge, noise = noise}
@@ -34,7 +35,7 @@ function M.build(opts)
                                refine_levels = slender.var("refine_levels", 0)}
   end
   -- an initial shape with n wings (S-5), on top of the random noise
-  local mode, mode_amp = slender.var("mode", 0), slender.var("mode_amp", 1e-3)
+  local mode, mode_amp = slender.var("mode", opts.mode or 0), slender.var("mode_amp", 1e-3)
   if mode > 0 then
     for i = 1, s.nodes do
       local x, y, z = sim:position(i)
@@ -96,7 +97,7 @@ function M.build(opts)
   -- mass-proportional damping (-v damping=, per time unit) at its stable step, until the force
   -- is below ftol and the kinetic energy below ketol_rel * Y h^3 (the bending energy scale of
   -- the unit disc; default 1e-7).
-  s.minimizer = slender.var("minimizer", slender.var("integrator", "fire"))
+  s.minimizer = slender.var("minimizer", slender.var("integrator", opts.minimizer or "fire"))
   if s.minimizer ~= "fire" and s.minimizer ~= "lbfgs" and s.minimizer ~= "damped" and
      s.minimizer ~= "newton" then
     error("minimizer must be fire, lbfgs, damped or newton, got " .. tostring(s.minimizer))

@@ -253,6 +253,32 @@ TEST(Continuation, RefusesAFixWithoutALoad) {
   EXPECT_THROW(continuation(*sim, opt), InputError);
 }
 
+// The e-cone growth's excess angle is a continuation parameter (docs/models.md §9.4); a
+// growth without one is refused, and a refused start leaves the parameter where it was.
+TEST(Continuation, WalksTheEconeExcessAngleAndRefusesOtherGrowths) {
+  auto sim = cantilever(5, Vec3(0, -1, 0));
+  sim->add_growth("cone", "econe", P({{"phi_e", 0.3}}));
+  sim->add_growth("iso", "isotropic", P({{"factor", 1.1}}));
+  Style* cone = sim->find_style("cone");
+  ASSERT_TRUE(cone->set_load_factor(2.5));
+  EXPECT_EQ(cone->value("phi_e"), 2.5);
+  EXPECT_FALSE(cone->set_load_factor(-7.0));  // below -2 pi: no cone
+  EXPECT_EQ(cone->value("phi_e"), 2.5);
+  ContinuationOptions opt;
+  opt.load = "iso";
+  try {
+    continuation(*sim, opt);
+    ADD_FAILURE() << "an isotropic growth was walked";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("econe walks phi_e"), std::string::npos) << e.what();
+  }
+  // the cantilever's forces do not depend on a growth no shell uses: refused, phi_e put back
+  opt.load = "cone";
+  opt.lambda0 = 2.5;
+  EXPECT_THROW(continuation(*sim, opt), InputError);
+  EXPECT_EQ(cone->value("phi_e"), 2.5);
+}
+
 TEST(Continuation, SwitchesOntoTheBuckledBranchAndFollowsTheElastica) {
   // the column of the last test, switched onto the bifurcated branch at P_cr: along it the
   // elastica gives lambda / P_cr = (2 K(k) / pi)^2 for the tip's lateral deflection

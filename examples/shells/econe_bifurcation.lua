@@ -6,7 +6,8 @@
 -- friction-held release as in econe_stability.lua. Columns asym_x, asym_y, asym_turn: the rms
 -- distance of the shape from its mirror images and from its half turn about the axis
 -- (docs/shells/README.md). Writes OUT/bifurcation.csv.
--- Run time: -v fast=1 about 10 s; the default (h = 0.02, edge 1/16) about 1 min.
+-- Run time: -v fast=1 about 10 s; the default (h = 0.02, edge 1/16) about 2 min; refined cores
+-- (-v refine_center=0.25 -v refine_levels=2) about 4 min.
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_start=5 (L-BFGS ramp to here, then continuation)
 --          -v cont_ftol=1e-4 (the continuation's force tolerance, a fraction of the ramp's: a soft
 --          asymmetric mode turns a looser residual into a visible asymmetry)

@@ -33,21 +33,20 @@ local dphi = slender.var("dphi", 0.5)
 local mirror_x, mirror_y = {}, {}
 local X = {}  -- the start (the flat disc seeded with the n = 2 shape)
 for i = 1, scene.nodes do X[i] = {sim:position(i)} end
-do
-  local function find(tx, ty)
-    local best, bd = nil, math.huge
-    for j = 1, scene.nodes do
-      local d = (X[j][1] - tx) ^ 2 + (X[j][2] - ty) ^ 2
-      if d < bd then best, bd = j, d end
-    end
-    return best, bd
+-- the node of the start nearest (tx, ty) in the plane, and its squared distance
+local function nearest(tx, ty)
+  local best, bd = nil, math.huge
+  for j = 1, scene.nodes do
+    local d = (X[j][1] - tx) ^ 2 + (X[j][2] - ty) ^ 2
+    if d < bd then best, bd = j, d end
   end
-  for i = 1, scene.nodes do
-    local jx, dx = find(-X[i][1], X[i][2])
-    local jy, dy = find(X[i][1], -X[i][2])
-    if dx > 1e-12 or dy > 1e-12 then error("e-cone bifurcation: the mesh is not mirror symmetric") end
-    mirror_x[i], mirror_y[i] = jx, jy
-  end
+  return best, bd
+end
+for i = 1, scene.nodes do
+  local jx, dx = nearest(-X[i][1], X[i][2])
+  local jy, dy = nearest(X[i][1], -X[i][2])
+  if dx > 1e-12 or dy > 1e-12 then error("e-cone bifurcation: the mesh is not mirror symmetric") end
+  mirror_x[i], mirror_y[i] = jx, jy
 end
 -- rms distance of the shape from its image under a mirror (axis 1: x -> -x, 2: y -> -y) or,
 -- with axis 0, under the half turn about z (both mirrors)
@@ -98,17 +97,9 @@ if slender.var("symmetrize", 1) == 1 then symmetrize() end
 -- break the symmetry: the apex in x, y and z (z: a translation along the axis, which both
 -- mirrors keep); the rim nodes on the +x and -x axes in y; the rim node on the +y axis in x.
 -- (nodes chosen by their place in the flat start, not where the ramp moved them)
-local function nearest(tx, ty)
-  local best, bd = nil, math.huge
-  for i = 1, scene.nodes do
-    local d = (X[i][1] - tx) ^ 2 + (X[i][2] - ty) ^ 2
-    if d < bd then best, bd = i, d end
-  end
-  return best
-end
-sim:group("hold_apex", {nodes = {nearest(0, 0)}})
-sim:group("hold_xaxis", {nodes = {nearest(2, 0), nearest(-2, 0)}})
-sim:group("hold_yaxis", {nodes = {nearest(0, 2)}})
+sim:group("hold_apex", {nodes = {(nearest(0, 0))}})
+sim:group("hold_xaxis", {nodes = {(nearest(2, 0)), (nearest(-2, 0))}})
+sim:group("hold_yaxis", {nodes = {(nearest(0, 2))}})
 sim:fix("apex", "clamp", {group = "hold_apex", components = "xyz"})
 sim:fix("rim_x", "clamp", {group = "hold_xaxis", components = "y"})
 sim:fix("rim_y", "clamp", {group = "hold_yaxis", components = "x"})

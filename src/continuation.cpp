@@ -32,7 +32,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
                      " lies outside [lambda_min, lambda_max] = [" + g6(opt.lambda_min) + ", " +
                      g6(opt.lambda_max) + "]");
   require_positions_only(sim, "continuation");
-  if (!fix->set_load_factor(opt.lambda0))
+  if (!fix->set_continuation_parameter(opt.lambda0))
     throw InputError(
         "continuation: " + std::string(fix->family_name()) + " '" + opt.load + "' (" +
         fix->style_name() +
@@ -43,7 +43,7 @@ ContinuationResult continuation(Simulation& sim, const ContinuationOptions& opt)
   const size_t N = n.n_owned();
   ++sim.state_epoch;
   StaticSystem sys(sim);
-  auto set_lambda = [&](double l) { fix->set_load_factor(l); };
+  auto set_lambda = [&](double l) { fix->set_continuation_parameter(l); };
   // the reference load q on the free components: the forces at lambda = 1 less those at 0
   // (the load is linear in lambda)
   set_lambda(1.0);

@@ -99,11 +99,11 @@ class Style {
   virtual void attach(Context&) {}
   virtual void save_state(StateMap&) const {}
   virtual void load_state(const StateMap&) {}
-  // Continuation (sim:continuation, docs/models.md §9.4): scales this style's load
-  // linearly by lambda (1: the load as the deck gave it), or sets the parameter it walks
-  // (growth econe: lambda is the excess angle phi_e). False where it has none
-  // (force/constant, moment2d, prescribe, the koiter shell's loads and econe have one).
-  virtual bool set_load_factor(double) { return false; }
+  // Continuation (sim:continuation, docs/models.md §9.4): sets the parameter lambda that
+  // the continuation walks. For a load it is a linear factor (1: the load as the deck gave
+  // it; force/constant, moment2d, prescribe, the koiter shell's loads); for growth econe it
+  // is the excess angle phi_e itself. False where the style has no such parameter.
+  virtual bool set_continuation_parameter(double) { return false; }
   // After a checkpoint was read (nodes, chains and every style's state in place): what is
   // wrong with the loaded state (indices past the nodes or edges, short arrays), or "".
   virtual std::string check_loaded(const Context&) const { return ""; }

@@ -52,7 +52,7 @@ class ConstantForceFix : public FixStyle {
     }
   }
   Vec3 current(double t) const { return load_factor_ * (force_ + rate_ * (t - t0_)); }
-  bool set_load_factor(double lambda) override {
+  bool set_continuation_parameter(double lambda) override {
     load_factor_ = lambda;
     return true;
   }

@@ -39,7 +39,7 @@ class EndMomentFix : public FixStyle {
     if (c->closed) throw InputError("fix 'moment2d': chain '" + chain_ + "' is closed: no end");
   }
   unsigned stages() const override { return kPostForce; }
-  bool set_load_factor(double lambda) override {
+  bool set_continuation_parameter(double lambda) override {
     factor_ = lambda;
     return true;
   }

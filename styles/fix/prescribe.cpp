@@ -109,7 +109,7 @@ class PrescribeFix : public FixStyle {
   }
   // The nodes move at once: a continuation evaluates the forces right after (bonds and
   // pairs run before this fix, so a move at post_force would come one evaluation late).
-  bool set_load_factor(double lambda) override {
+  bool set_continuation_parameter(double lambda) override {
     load_factor_ = lambda;
     place(*ctx_, ctx_->time(), false);
     return true;

@@ -54,7 +54,7 @@ class EconeGrowth : public GrowthStyle {
   }
   // sim:continuation{load = id} walks phi_e (docs/models.md §9.4): the e-cone's branches
   // and their stability in the excess angle
-  bool set_load_factor(double lambda) override {
+  bool set_continuation_parameter(double lambda) override {
     if (lambda < -2 * M_PI) return false;
     phi_e_ = lambda;
     bump();

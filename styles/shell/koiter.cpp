@@ -444,7 +444,7 @@ class KoiterShell : public ShellStyle {
     }
     return true;
   }
-  bool set_load_factor(double lambda) override {
+  bool set_continuation_parameter(double lambda) override {
     if (load_.squaredNorm() == 0 && line_weights_.empty() && moment_points_.empty() &&
         pressure_ == 0)
       return false;

@@ -111,7 +111,7 @@ TEST(ConstantForceFix, PerNodeTable) {
   sim.time = 2.0;
   sim.compute_forces();
   EXPECT_NEAR(sim.nodes().f[3].x(), 0.5 * 2.0, 1e-12);
-  ASSERT_TRUE(sim.fix("load").set_load_factor(0.5));
+  ASSERT_TRUE(sim.fix("load").set_continuation_parameter(0.5));
   sim.time = 0.0;
   sim.compute_forces();
   EXPECT_NEAR(sim.nodes().f[3].y(), 1.5, 1e-15);

@@ -260,9 +260,9 @@ TEST(Continuation, WalksTheEconeExcessAngleAndRefusesOtherGrowths) {
   sim->add_growth("cone", "econe", P({{"phi_e", 0.3}}));
   sim->add_growth("iso", "isotropic", P({{"factor", 1.1}}));
   Style* cone = sim->find_style("cone");
-  ASSERT_TRUE(cone->set_load_factor(2.5));
+  ASSERT_TRUE(cone->set_continuation_parameter(2.5));
   EXPECT_EQ(cone->value("phi_e"), 2.5);
-  EXPECT_FALSE(cone->set_load_factor(-7.0));  // below -2 pi: no cone
+  EXPECT_FALSE(cone->set_continuation_parameter(-7.0));  // below -2 pi: no cone
   EXPECT_EQ(cone->value("phi_e"), 2.5);
   ContinuationOptions opt;
   opt.load = "iso";

@@ -48,7 +48,7 @@ TEST(PrescribeFix, TipDeflectionGivesTheCantileversReaction) {
   EXPECT_NEAR(reaction, -3.0 * w, 2e-3 * 3.0 * w);               // the support pulls the tip down
   EXPECT_NEAR(sim->fix("move").value("reaction_x"), 0.0, 1e-9);  // x is not held: no reaction
   // the load factor moves the held nodes at once (before any evaluation)
-  sim->fix("move").set_load_factor(0.5);
+  sim->fix("move").set_continuation_parameter(0.5);
   EXPECT_DOUBLE_EQ(sim->nodes().x[40].y(), -0.5 * w);
 }
 
@@ -86,7 +86,7 @@ TEST(PrescribeFix, ContinuationDrivesTheTipThroughLargeDeflections) {
   EXPECT_NEAR(first_ratio, 1.0, 0.02);
   EXPECT_EQ(unstable, 0);
   ASSERT_GT(last, 0.999);
-  sim->fix("move").set_load_factor(1.0);  // back from the step past lambda_max
+  sim->fix("move").set_continuation_parameter(1.0);  // back from the step past lambda_max
   sim->compute_forces();
   sim->set_integrator("newton", {});
   sim->minimize(1e-8, 100, "newton");

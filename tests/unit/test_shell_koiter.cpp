@@ -143,12 +143,12 @@ TEST(KoiterShell, PressureOnAClosedSphere) {
   double outward = 0;
   for (std::size_t i = 0; i < f1.size(); ++i) outward += (f1[i] - f0[i]).dot(sim->nodes().x[i]);
   EXPECT_NEAR(outward, 3.0 * 3.0 * V, 0.05 * 9.0 * V);  // sum x . p n dA = 3 p V
-  ASSERT_TRUE(shell->set_load_factor(0.5));
+  ASSERT_TRUE(shell->set_continuation_parameter(0.5));
   sim->compute_forces();
   for (std::size_t i = 0; i < f1.size(); ++i)
     EXPECT_LT((sim->nodes().f[i] - 0.5 * (f1[i] + f0[i])).norm(), 1e-12 * (1 + f1[i].norm()));
   EXPECT_EQ(shell->value("load_factor"), 0.5);
-  EXPECT_FALSE(bare->shells().front()->set_load_factor(0.5));  // no load to scale
+  EXPECT_FALSE(bare->shells().front()->set_continuation_parameter(0.5));  // no load to scale
 }
 
 namespace {
@@ -274,7 +274,7 @@ TEST(KoiterShell, LineMomentIsConsistentAndCountsTurns) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("twisting moment"), std::string::npos) << e.what();
   }
-  ASSERT_TRUE(flat->shells().front()->set_load_factor(0.5));
+  ASSERT_TRUE(flat->shells().front()->set_continuation_parameter(0.5));
   flat->compute_forces();
   EXPECT_NEAR(flat->potential_energy(), -0.5 * m * 0.6 * 12.0, 1e-9);
 }

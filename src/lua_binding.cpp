@@ -238,6 +238,14 @@ ParamSpec minimize_spec() {
        "where there is contact); \"auto\": unlimited")
       .def(std::string("auto"))
       .positive();
+  s.real("keep_factorization",
+         "newton: keep the last factorisation while an iteration cuts the largest force by at "
+         "least this factor (modified Newton: a solve instead of an assembly and a "
+         "factorisation) and start each factorisation from the last Levenberg shift; 0: plain "
+         "Newton (integrator newton's parameter of the same name)")
+      .def(0.0)
+      .min(0.0)
+      .max(1.0, true);
   return s;
 }
 
@@ -637,6 +645,7 @@ int l_minimize(lua_State* L) {
   if (method == "lbfgs") lbfgs["memory"] = static_cast<double>(p.integer("memory"));
   if ((method == "lbfgs" || method == "newton") && !p.is_auto("max_move"))
     lbfgs["max_move"] = p.real("max_move");
+  if (method == "newton") lbfgs["keep_factorization"] = p.real("keep_factorization");
   const double ketol =
       p.is_auto("ketol") ? std::numeric_limits<double>::infinity() : p.real("ketol");
   long n = sim.minimize(p.real("ftol"), p.integer("max_steps"), method, lbfgs, ketol);

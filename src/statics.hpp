@@ -7,6 +7,7 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -43,11 +44,21 @@ class StaticSystem {
   double diagonal_scale() const;
 
  private:
+  // free[3 i + c]: the row of component c of node i, or -1; returns the count
+  int free_components(std::vector<int>& free) const;
+
   Simulation& sim_;
   Hessian H_;
   std::vector<int> free_;  // row of component c of node i at 3 i + c, or -1
-  Eigen::SparseMatrix<double> K_;
+  Eigen::SparseMatrix<double> K_, shifted_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  // The assembly's entries (column << 32 | row, in the styles' order) and values; the
+  // entries of the last new pattern, where each one lands in K_'s values, and the
+  // diagonal's places. An assembly with the pattern of the last one only adds values.
+  std::vector<std::uint64_t> keys_, pattern_;
+  std::vector<double> values_;
+  std::vector<int> slot_, diagonal_;
+  long pattern_version_ = 0, analyzed_version_ = -1;
 };
 
 }  // namespace slender

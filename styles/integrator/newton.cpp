@@ -30,6 +30,16 @@ class NewtonMinimizer : public IntegratorStyle {
           "largest displacement of a node per iteration (length); \"auto\": unlimited")
         .def(std::string("auto"))
         .positive();
+    s.real("keep_factorization",
+           "keep the last factorisation while an iteration cuts the largest force by at least "
+           "this factor (modified Newton: a solve instead of an assembly and a factorisation; "
+           "the next iteration factorises again after a slower one or a shortened step), and "
+           "start each factorisation from the last Levenberg shift (negative_pivots then "
+           "counts the last unshifted factorisation); 0: plain Newton, each iteration "
+           "factorises the unshifted Hessian first")
+        .def(0.0)
+        .min(0.0)
+        .max(1.0, true);
     s.output("negative_pivots",
              "negative pivots of the Hessian at the last iteration (its count of unstable "
              "directions; 0 at a stable equilibrium)");
@@ -40,7 +50,8 @@ class NewtonMinimizer : public IntegratorStyle {
   }
   NewtonMinimizer(Simulation&, const ParamValues& p)
       : max_move_(p.is_auto("max_move") ? std::numeric_limits<double>::infinity()
-                                        : p.real("max_move")) {
+                                        : p.real("max_move")),
+        keep_(p.real("keep_factorization")) {
     read_time_step(p);
   }
   double stability_limit() const override { return 2.0; }
@@ -49,31 +60,45 @@ class NewtonMinimizer : public IntegratorStyle {
   void setup(Simulation& sim) override {
     require_positions_only(sim, "integrator 'newton'");
     if (!sim.forces_valid) sim.compute_forces();
+    boost_ = 0.0;
+    factored_ = false;
+    shift_ = 0.0;
+    last_ratio_ = 1.0;
     system_ = std::make_unique<StaticSystem>(sim);
     system_->assemble();  // names a style without a Hessian before the first step
-    boost_ = 0.0;
   }
 
   void step(Simulation& sim) override {
     auto& n = sim.nodes();
     const size_t N = n.n_owned();
-    system_->assemble();
+    // modified Newton: the factorisation of an earlier iteration while it still converges
+    // fast; its K (+ mu I) is positive definite, so its step still goes downhill
+    const bool reuse = keep_ > 0 && factored_ && last_ratio_ <= keep_;
+    if (!reuse) system_->assemble();
     const Eigen::VectorXd f = system_->forces();
-    // Newton step, or the Levenberg step where K is not positive definite
-    const double scale = system_->diagonal_scale();
-    double mu = boost_;
-    for (int tries = 0;; ++tries) {
-      const long negative = system_->factorize(mu);
-      ++factorizations_;
-      if (mu == 0.0) negative_pivots_ = negative;
-      if (negative == 0) break;
-      if (tries > 60)
-        throw InputError(
-            "integrator 'newton': the Hessian stays singular however it is shifted (NaN "
-            "in the state?)");
-      mu = mu == 0.0 ? 1e-8 * scale : 10.0 * mu;
+    if (!reuse) {
+      // Newton step, or the Levenberg step where K is not positive definite
+      const double scale = system_->diagonal_scale();
+      // with keep_factorization, from the last iteration's shift: a free body's rigid
+      // motions leave K singular to round-off, and retrying mu = 0 each time costs a
+      // factorisation per rung of the ladder
+      // (a tenth of it, not below the ladder's first rung, so that a large shift decays)
+      double mu =
+          keep_ > 0 && shift_ > 0 ? std::max(boost_, std::max(0.1 * shift_, 1e-8 * scale)) : boost_;
+      for (int tries = 0;; ++tries) {
+        const long negative = system_->factorize(mu);
+        ++factorizations_;
+        if (mu == 0.0) negative_pivots_ = negative;
+        if (negative == 0) break;
+        if (tries > 60)
+          throw InputError(
+              "integrator 'newton': the Hessian stays singular however it is shifted (NaN "
+              "in the state?)");
+        mu = mu == 0.0 ? 1e-8 * scale : 10.0 * mu;
+      }
+      shift_ = mu;
+      factored_ = true;
     }
-    shift_ = mu;
     const Eigen::VectorXd dx = system_->solve(f);
     const std::vector<Vec3> d = system_->per_node(dx);
     double dmax = 0.0;
@@ -100,9 +125,12 @@ class NewtonMinimizer : public IntegratorStyle {
       for (size_t i = 0; i < N; ++i) n.x[i] = x0_[i];
       sim.compute_forces();
       ++evaluations_;
-      boost_ = std::max(10.0 * shift_, 1e-6 * scale);
+      boost_ = std::max(10.0 * shift_, 1e-6 * system_->diagonal_scale());
+      factored_ = false;
     } else {
-      boost_ = alpha == 1.0 ? 0.0 : boost_;
+      if (!reuse) boost_ = alpha == 1.0 ? 0.0 : boost_;
+      // a full step that cut the force enough keeps the factorisation for the next one
+      last_ratio_ = alpha == 1.0 && f0 > 0 ? sim.max_force() / f0 : 1.0;
     }
     sim.end_of_step();
   }
@@ -116,8 +144,10 @@ class NewtonMinimizer : public IntegratorStyle {
   }
 
  private:
-  double max_move_;
+  double max_move_, keep_;
   std::unique_ptr<StaticSystem> system_;
+  bool factored_ = false;
+  double last_ratio_ = 1.0;
   std::vector<Vec3> x0_;
   double boost_ = 0.0, shift_ = 0.0;
   long negative_pivots_ = 0, evaluations_ = 0, factorizations_ = 0;

@@ -9,6 +9,7 @@
 #include "continuation.hpp"
 #include "helpers.hpp"
 #include "hessian.hpp"
+#include "statics.hpp"
 
 using namespace slender;
 using namespace slender::test;
@@ -99,6 +100,50 @@ TEST(Newton, CantileverConvergesQuadraticallyToTheLbfgsAnswer) {
       ++quadratic;
     }
   EXPECT_GE(quadratic, 1);
+}
+
+TEST(Newton, KeepingTheFactorizationReachesTheSameStateWithFewerFactorizations) {
+  // modified Newton (keep_factorization): the same equilibrium as plain Newton, with a
+  // factorisation kept over the iterations that still converge fast
+  auto solve = [](double keep, double& factorizations, int& iterations) {
+    auto sim = cantilever(21, Vec3(0, -3.0, 0));
+    sim->set_integrator("newton", P({{"keep_factorization", keep}}));
+    auto* integ = sim->integrator();
+    integ->setup(*sim);
+    for (iterations = 0; iterations < 200 && sim->max_force() > 1e-9; ++iterations)
+      integ->step(*sim);
+    factorizations = integ->value("factorizations");
+    EXPECT_LT(sim->max_force(), 1e-9) << "keep " << keep;
+    return Vec3(sim->nodes().x[21]);
+  };
+  double f_plain = 0, f_kept = 0;
+  int it_plain = 0, it_kept = 0;
+  const Vec3 plain = solve(0.0, f_plain, it_plain);
+  const Vec3 kept = solve(0.5, f_kept, it_kept);
+  EXPECT_LT((plain - kept).norm(), 1e-7);
+  EXPECT_LT(f_kept, f_plain);
+  EXPECT_LT(f_kept, it_kept);  // some iterations solved with an earlier factorisation
+}
+
+TEST(Newton, ReassemblyOnTheKeptPatternEqualsAFreshAssembly) {
+  // StaticSystem adds the values of a repeated pattern into its kept matrix: the matrix and
+  // the inertia must be those a fresh assembly gives
+  auto sim = cantilever(11, Vec3(0, -3.0, 0), 0.3);
+  sim->compute_forces();
+  StaticSystem kept(*sim);
+  kept.assemble();
+  for (int i = 2; i <= 11; ++i) sim->nodes().x[i].y() -= 0.05 * i * i / 121.0;
+  sim->compute_forces();
+  const Eigen::SparseMatrix<double> again = kept.assemble();
+  StaticSystem fresh(*sim);
+  const Eigen::SparseMatrix<double> first = fresh.assemble();
+  ASSERT_EQ(again.rows(), first.rows());
+  EXPECT_GT(first.norm(), 0.0);
+  EXPECT_EQ((Eigen::MatrixXd(again) - Eigen::MatrixXd(first)).norm(), 0.0);
+  EXPECT_EQ(kept.factorize(), fresh.factorize());
+  EXPECT_EQ(kept.factorize(1e3), fresh.factorize(1e3));
+  const Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(first.rows(), -1.0, 1.0);
+  EXPECT_LT((kept.solve(r) - fresh.solve(r)).norm(), 1e-12 * fresh.solve(r).norm());
 }
 
 TEST(Newton, BucklesPastEulersLoadOntoTheElasticaAndCountsTheUnstableMode) {

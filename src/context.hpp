@@ -50,6 +50,10 @@ class Context {
     return sim_.parallel_node_forces(n, std::forward<Kernel>(kernel));
   }
   template <class Kernel>
+  double parallel_heavy_forces(std::size_t n, Kernel&& kernel) {
+    return sim_.parallel_heavy_forces(n, std::forward<Kernel>(kernel));
+  }
+  template <class Kernel>
   double parallel_chain_forces(std::size_t n, bool closed, long n_positions, long lo, long hi,
                                Kernel&& kernel) {
     return sim_.parallel_chain_forces(n, closed, n_positions, lo, hi, std::forward<Kernel>(kernel));

@@ -135,6 +135,13 @@ class Simulation {
   double parallel_node_forces(std::size_t n, Kernel&& kernel) {
     return parallel_forces(threads(), scratch_, nodes_.f, n, std::forward<Kernel>(kernel));
   }
+  // The same for kernels whose items are heavy (shell elements' Gauss points, hundreds of
+  // nanoseconds each): they take the requested threads at any scene size, the node-count
+  // gate of threads() being set for light per-node work.
+  template <class Kernel>
+  double parallel_heavy_forces(std::size_t n, Kernel&& kernel) {
+    return parallel_forces(threads_, scratch_, nodes_.f, n, std::forward<Kernel>(kernel));
+  }
   // The same for a kernel over the items of one chain (src/threads.hpp, ChainForces):
   // bit-identical to one thread, without per-thread force buffers.
   template <class Kernel>

@@ -12,6 +12,8 @@
 // quadratics and never on a vertex (irregular elements need no limit at a node);
 // quadrature = 1 uses the centroid. Lumped mass by row sums (§6.4).
 #include <Eigen/Dense>
+#include <array>
+#include <cassert>
 #include <cmath>
 #include <random>
 #include <unsupported/Eigen/AutoDiff>
@@ -221,7 +223,7 @@ class KoiterShell : public ShellStyle {
     auto& x = sim.nodes().x;
     place_ghosts(x);
     double es = 0, eb = 0;
-    accumulate(x, sim.nodes().f, &es, &eb, true);
+    accumulate(x, sim.nodes().f, &es, &eb, true, &sim);
     double ext = 0;
     if (load_.squaredNorm() > 0) {
       // consistent nodal loads, Phi_ext = -q . sum_I (integral N_I) u_I
@@ -868,68 +870,98 @@ class KoiterShell : public ShellStyle {
   }
 
   // Element energies and forces; f gets -grad. Observables when `observe`.
+  // With a context, the Gauss points run on its threads (ranges aligned to whole
+  // elements, so that each element's face values have one writer), forces into f =
+  // the nodes' forces; without, serially into f.
   void accumulate(const std::vector<Vec3>& x, std::vector<Vec3>& f, double* es, double* eb,
-                  bool observe) {
-    double Es = 0, Eb = 0, area = 0, ub_int = 0;
+                  bool observe, Context* threads = nullptr) {
+    struct Part {
+      double Es = 0, Eb = 0, area = 0, ub_int = 0;
+    };
+    std::array<Part, kMaxThreads> parts{};
     if (observe) {
       std::fill(face_ub_.begin(), face_ub_.end(), 0.0);
       std::fill(face_us_.begin(), face_us_.end(), 0.0);
       face_area_.assign(n_elem_, 0.0);
     }
-    for (const GaussPoint& gp : gauss_) {
-      const shell::ShapeRow* R = &rows_[gp.row0];
-      Vec3 a1 = Vec3::Zero(), a2 = a1, a11 = a1, a12 = a1, a22 = a1;
-      for (int r = 0; r < gp.nrows; ++r) {
-        const Vec3& p = x[R[r].node];
-        a1 += R[r].Nv * p;
-        a2 += R[r].Nw * p;
-        a11 += R[r].Nvv * p;
-        a12 += R[r].Nvw * p;
-        a22 += R[r].Nww * p;
+    const std::size_t n_gauss = gauss_.size();
+    auto element_start = [&](std::size_t i) {
+      while (i > 0 && i < n_gauss && gauss_[i].element == gauss_[i - 1].element) ++i;
+      return i;
+    };
+    auto kernel = [&](int tid, std::size_t begin, std::size_t end, Vec3* fo) {
+      Part& part = parts[static_cast<std::size_t>(tid)];
+      double &Es = part.Es, &Eb = part.Eb, &area = part.area, &ub_int = part.ub_int;
+      for (std::size_t g = element_start(begin); g < element_start(end); ++g) {
+        const GaussPoint& gp = gauss_[g];
+        const shell::ShapeRow* R = &rows_[gp.row0];
+        Vec3 a1 = Vec3::Zero(), a2 = a1, a11 = a1, a12 = a1, a22 = a1;
+        for (int r = 0; r < gp.nrows; ++r) {
+          const Vec3& p = x[R[r].node];
+          a1 += R[r].Nv * p;
+          a2 += R[r].Nw * p;
+          a11 += R[r].Nvv * p;
+          a12 += R[r].Nvw * p;
+          a22 += R[r].Nww * p;
+        }
+        const Vec3 n = a1.cross(a2);
+        const double J = n.norm();
+        const Vec3 a3 = n / J;
+        Mat2 a, k;
+        a << a1.dot(a1), a1.dot(a2), a1.dot(a2), a2.dot(a2);
+        k << a11.dot(a3), a12.dot(a3), a12.dot(a3), a22.dot(a3);
+        const Mat2 ah = gp.P.transpose() * a * gp.P;
+        const Mat2 kh = gp.P.transpose() * k * gp.P;
+        const Mat2 al = 0.5 * (ah - gp.abar);
+        const Mat2 be = gp.kbar - kh;
+        const Vec3 alV(al(0, 0), al(1, 1), 2 * al(0, 1));
+        const Vec3 beV(be(0, 0), be(1, 1), 2 * be(0, 1));
+        const Vec3 HalV = gp.H * alV, HbeV = gp.H * beV;
+        const double Us = alV.dot(HalV), Ub = beV.dot(HbeV);
+        const double w = area_factor_ ? gp.w * gp.detG : gp.w;
+        Es += 0.5 * Cm_ * Us * w;
+        Eb += 0.5 * Cb_ * Ub * w;
+        if (observe) {
+          // densities of §6.3/§6.11 over the current area element
+          const double cur = gp.wq * J;
+          area += cur;
+          ub_int += Ub * cur;
+          face_ub_[gp.element] += Ub * cur;
+          face_us_[gp.element] += Us * cur;
+          face_area_[gp.element] += cur;
+        }
+        Mat2 N, M;
+        N << Cm_ * HalV(0), Cm_ * HalV(2), Cm_ * HalV(2), Cm_ * HalV(1);
+        M << Cb_ * HbeV(0), Cb_ * HbeV(2), Cb_ * HbeV(2), Cb_ * HbeV(1);
+        const Mat2 Nt = gp.P * N * gp.P.transpose();
+        const Mat2 Mt = gp.P * M * gp.P.transpose();
+        const Vec3 m1 = Nt(0, 0) * a1 + Nt(0, 1) * a2;
+        const Vec3 m2 = Nt(1, 0) * a1 + Nt(1, 1) * a2;
+        Vec3 c = Mt(0, 0) * a11 + 2 * Mt(0, 1) * a12 + Mt(1, 1) * a22;
+        c -= c.dot(a3) * a3;
+        const Vec3 b1 = a2.cross(c) / J, b2 = c.cross(a1) / J;
+        const Vec3 g1 = w * (m1 - b1), g2 = w * (m2 - b2);
+        const Vec3 g3 = -w * a3;
+        for (int r = 0; r < gp.nrows; ++r) {
+          const shell::ShapeRow& s = R[r];
+          fo[s.node] -= s.Nv * g1 + s.Nw * g2 +
+                        (Mt(0, 0) * s.Nvv + 2 * Mt(0, 1) * s.Nvw + Mt(1, 1) * s.Nww) * g3;
+        }
       }
-      const Vec3 n = a1.cross(a2);
-      const double J = n.norm();
-      const Vec3 a3 = n / J;
-      Mat2 a, k;
-      a << a1.dot(a1), a1.dot(a2), a1.dot(a2), a2.dot(a2);
-      k << a11.dot(a3), a12.dot(a3), a12.dot(a3), a22.dot(a3);
-      const Mat2 ah = gp.P.transpose() * a * gp.P;
-      const Mat2 kh = gp.P.transpose() * k * gp.P;
-      const Mat2 al = 0.5 * (ah - gp.abar);
-      const Mat2 be = gp.kbar - kh;
-      const Vec3 alV(al(0, 0), al(1, 1), 2 * al(0, 1));
-      const Vec3 beV(be(0, 0), be(1, 1), 2 * be(0, 1));
-      const Vec3 HalV = gp.H * alV, HbeV = gp.H * beV;
-      const double Us = alV.dot(HalV), Ub = beV.dot(HbeV);
-      const double w = area_factor_ ? gp.w * gp.detG : gp.w;
-      Es += 0.5 * Cm_ * Us * w;
-      Eb += 0.5 * Cb_ * Ub * w;
-      if (observe) {
-        // densities of §6.3/§6.11 over the current area element
-        const double cur = gp.wq * J;
-        area += cur;
-        ub_int += Ub * cur;
-        face_ub_[gp.element] += Ub * cur;
-        face_us_[gp.element] += Us * cur;
-        face_area_[gp.element] += cur;
-      }
-      Mat2 N, M;
-      N << Cm_ * HalV(0), Cm_ * HalV(2), Cm_ * HalV(2), Cm_ * HalV(1);
-      M << Cb_ * HbeV(0), Cb_ * HbeV(2), Cb_ * HbeV(2), Cb_ * HbeV(1);
-      const Mat2 Nt = gp.P * N * gp.P.transpose();
-      const Mat2 Mt = gp.P * M * gp.P.transpose();
-      const Vec3 m1 = Nt(0, 0) * a1 + Nt(0, 1) * a2;
-      const Vec3 m2 = Nt(1, 0) * a1 + Nt(1, 1) * a2;
-      Vec3 c = Mt(0, 0) * a11 + 2 * Mt(0, 1) * a12 + Mt(1, 1) * a22;
-      c -= c.dot(a3) * a3;
-      const Vec3 b1 = a2.cross(c) / J, b2 = c.cross(a1) / J;
-      const Vec3 g1 = w * (m1 - b1), g2 = w * (m2 - b2);
-      const Vec3 g3 = -w * a3;
-      for (int r = 0; r < gp.nrows; ++r) {
-        const shell::ShapeRow& s = R[r];
-        f[s.node] -= s.Nv * g1 + s.Nw * g2 +
-                     (Mt(0, 0) * s.Nvv + 2 * Mt(0, 1) * s.Nvw + Mt(1, 1) * s.Nww) * g3;
-      }
+      return 0.0;
+    };
+    if (threads) {
+      assert(&f == &threads->nodes().f);
+      threads->parallel_heavy_forces(n_gauss, kernel);
+    } else {
+      kernel(0, 0, n_gauss, f.data());
+    }
+    double Es = 0, Eb = 0, area = 0, ub_int = 0;
+    for (const Part& part : parts) {
+      Es += part.Es;
+      Eb += part.Eb;
+      area += part.area;
+      ub_int += part.ub_int;
     }
     *es = Es;
     *eb = Eb;

@@ -93,6 +93,38 @@ TEST(KoiterShell, ForcesAreTheGradientOfTheEnergy) {
   EXPECT_LT(fd_force_error(*sim, 1e-6), 2e-6);
 }
 
+TEST(KoiterShell, ElementLoopOnThreadsGivesTheSerialForces) {
+  // the Gauss points run on the requested threads at any scene size (a few hundred nodes
+  // here, below the node-count gate of the light kernels); each element's face values
+  // have one writer, the forces are summed in thread order
+  auto run = [](int threads, double* e, std::vector<double>* face) {
+    auto sim = shell_scene(shell::make_disc(1.0, 3),
+                           P({{"thickness", 0.02}, {"boundary", std::string("mirror")}}));
+    randomize(*sim, 0.02, 9);
+    sim->set_threads(threads);
+    sim->compute_forces();
+    *e = sim->potential_energy();
+    const std::vector<double>* ub = sim->shells().front()->face_values("Ub");
+    EXPECT_NE(ub, nullptr);
+    *face = ub ? *ub : std::vector<double>{};
+    return sim->nodes().f;
+  };
+  double e1 = 0, e2 = 0;
+  std::vector<double> face1, face2;
+  const auto f1 = run(1, &e1, &face1);
+  const auto f2 = run(2, &e2, &face2);
+  ASSERT_EQ(f1.size(), f2.size());
+  double fmax = 0, diff = 0;
+  for (size_t i = 0; i < f1.size(); ++i) {
+    fmax = std::max(fmax, f1[i].norm());
+    diff = std::max(diff, (f1[i] - f2[i]).norm());
+  }
+  EXPECT_GT(fmax, 0.0);
+  EXPECT_LT(diff, 1e-12 * fmax);
+  EXPECT_NEAR(e2, e1, 1e-12 * std::abs(e1));
+  EXPECT_EQ(face1, face2);  // per element, summed by one thread in the serial order
+}
+
 TEST(KoiterShell, HessianMatchesFiniteDifferencesOfTheForces) {
   // with growth, on a curved reference, for each ghost rule with kinematic or free ghosts
   // ("combined": the ghost springs, which act back on the mirror's nodes by default)

@@ -25,8 +25,8 @@ struct ContinuationPoint {
 };
 
 struct ContinuationOptions {
-  std::string
-      load;  // id of the style whose parameter lambda walks (Style::set_continuation_parameter)
+  // id of the style whose parameter lambda walks (Style::set_continuation_parameter)
+  std::string load;
   double lambda0 = 0.0;
   double lambda_min = -std::numeric_limits<double>::infinity();
   double lambda_max = std::numeric_limits<double>::infinity();

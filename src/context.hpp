@@ -45,6 +45,9 @@ class Context {
 
   // --- threads (src/threads.hpp)
   int threads() const { return sim_.threads(); }
+  // Threads for kernels of a few hundred nanoseconds per item (shell elements, triangle
+  // pairs): the requested count at any scene size, not gated by the node count.
+  int heavy_threads() const { return sim_.requested_threads(); }
   template <class Kernel>
   double parallel_node_forces(std::size_t n, Kernel&& kernel) {
     return sim_.parallel_node_forces(n, std::forward<Kernel>(kernel));

@@ -204,31 +204,40 @@ class ShellContactPair : public PairStyle {
       box_lo_[t] = a.cwiseMin(b).cwiseMin(c).array() - 0.5 * h_;
       box_hi_[t] = a.cwiseMax(b).cwiseMax(c).array() + 0.5 * h_;
     }
+    // Pass 1, on threads: screen every listed pair (boxes, the ridge rule, the separating
+    // planes) and find its feature pairs within h; pure geometry, one record per feature
+    // pair in list order (or one "not touching" record). Pass 2, serial, in list order:
+    // forces, energies and friction, so that any thread count gives the serial sums.
+    hits_.clear();
+    parallel_list(sim.heavy_threads(), pairs_.size(), hits_, hit_parts_,
+                  [&](std::size_t begin, std::size_t end, std::vector<Hit>& out) {
+                    for (std::size_t i = begin; i < end; ++i) screen(x, i, out);
+                  });
     auto& v = sim.nodes().v;
-    for (Candidate& c : pairs_) {
-      // boxes grown by h/2 that do not overlap: more than h apart
-      if ((box_lo_[c.t1].array() > box_hi_[c.t2].array()).any() ||
-          (box_lo_[c.t2].array() > box_hi_[c.t1].array()).any())
+    for (std::size_t k = 0; k < hits_.size();) {
+      Candidate& c = pairs_[hits_[k].pair];
+      if (!hits_[k].touching) {
+        c.friction.active = false;
+        ++k;
         continue;
-      std::array<Vec3, 3> A, B;
-      for (int k = 0; k < 3; ++k) {
-        A[k] = x[base_ + T[c.t1][k]];
-        B[k] = x[base_ + T[c.t2][k]];
       }
-      const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
-      // near neighbours touch only across a ridge (or never)
-      if (c.near && (near_never_ || n1.dot(n2) > 0)) continue;
-      if (separated(A, B, n1, n2)) continue;
+      std::array<Vec3, 3> A, B;
+      for (int j = 0; j < 3; ++j) {
+        A[j] = x[base_ + T[c.t1][j]];
+        B[j] = x[base_ + T[c.t2][j]];
+      }
       // normal forces of this pair; friction acts once per pair on their sum, at the
       // force-weighted contact point (so dense = all and closest share one stick spring)
       Vec3 normal_sum = Vec3::Zero(), w1_sum = Vec3::Zero(), w2_sum = Vec3::Zero();
       double mag_sum = 0;
-      auto apply = [&](const shell::TrianglePair& tp) {
+      const std::size_t pair = hits_[k].pair;
+      for (; k < hits_.size() && hits_[k].pair == pair; ++k) {
+        const shell::TrianglePair& tp = hits_[k].tp;
         Vec3 dir = tp.d;
         if (tp.dist > 0) {
           dir /= tp.dist;
         } else {  // touching: push along the normal of T1
-          dir = n1.normalized();
+          dir = hits_[k].n1.normalized();
         }
         const double r = std::max(tp.dist, rc);
         const double mag = k_ * (h_ - r) * (h_ - r) / (r * r);
@@ -236,60 +245,39 @@ class ShellContactPair : public PairStyle {
         if (tp.dist < rc) U += mag * (rc - tp.dist);
         energy += U;
         const Vec3 fv = mag * dir;
-        for (int k = 0; k < 3; ++k) {
-          f[base_ + T[c.t1][k]] += tp.w1[k] * fv;
-          f[base_ + T[c.t2][k]] -= tp.w2[k] * fv;
+        for (int j = 0; j < 3; ++j) {
+          f[base_ + T[c.t1][j]] += tp.w1[j] * fv;
+          f[base_ + T[c.t2][j]] -= tp.w2[j] * fv;
         }
         force_sum_ += mag;
         normal_sum += fv;
         mag_sum += mag;
-        for (int k = 0; k < 3; ++k) {
-          w1_sum[k] += mag * tp.w1[k];
-          w2_sum[k] += mag * tp.w2[k];
+        for (int j = 0; j < 3; ++j) {
+          w1_sum[j] += mag * tp.w1[j];
+          w2_sum[j] += mag * tp.w2[j];
         }
         Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
-        for (int k = 0; k < 3; ++k) {
-          p1 += tp.w1[k] * A[k];
-          p2 += tp.w2[k] * B[k];
+        for (int j = 0; j < 3; ++j) {
+          p1 += tp.w1[j] * A[j];
+          p2 += tp.w2[j] * B[j];
         }
         points_.push_back(0.5 * (p1 + p2));
         forces_.push_back(fv);
-      };
-      bool touching = false;
-      if (dense_all_) {
-        shell::for_each_feature_pair(
-            A, B,
-            [&](const shell::TrianglePair& tp) {
-              if (tp.dist >= h_) return;
-              apply(tp);
-              touching = true;
-            },
-            masks_[c.t1], masks_[c.t2]);
-      } else {
-        const shell::TrianglePair tp = shell::triangle_distance(A, B);
-        if (tp.dist < h_) {
-          apply(tp);
-          touching = true;
-        }
-      }
-      if (!touching) {
-        c.friction.active = false;
-        continue;
       }
       const double normal = normal_sum.norm();
       if (friction_.frictional() && normal > 0) {
         const Vec3 w1 = w1_sum / mag_sum, w2 = w2_sum / mag_sum;
         Vec3 vrel = Vec3::Zero();
-        for (int k = 0; k < 3; ++k)
-          vrel += w1[k] * v[base_ + T[c.t1][k]] - w2[k] * v[base_ + T[c.t2][k]];
+        for (int j = 0; j < 3; ++j)
+          vrel += w1[j] * v[base_ + T[c.t1][j]] - w2[j] * v[base_ + T[c.t2][j]];
         // a pair's stick spring scales with its normal force (contact size), so that the
         // lightly loaded pairs at a patch's rim do not slip first and unzip the patch
         ContactLaw law = friction_;
         law.stick_stiffness *= normal / k_;
         const Vec3 ft = law.friction(normal, normal_sum / normal, vrel, sim.dt(), c.friction);
-        for (int k = 0; k < 3; ++k) {
-          f[base_ + T[c.t1][k]] += w1[k] * ft;
-          f[base_ + T[c.t2][k]] -= w2[k] * ft;
+        for (int j = 0; j < 3; ++j) {
+          f[base_ + T[c.t1][j]] += w1[j] * ft;
+          f[base_ + T[c.t2][j]] -= w2[j] * ft;
         }
       }
       ++contacts_;
@@ -469,6 +457,46 @@ class ShellContactPair : public PairStyle {
   }
 
  private:
+  // What pass 1 of compute() finds for a listed pair: one record per feature pair within
+  // h (touching), or one record saying the pair is in reach but not touching.
+  struct Hit {
+    std::size_t pair;
+    bool touching;
+    Vec3 n1;  // T1's unnormalised normal, for a feature pair at distance 0
+    shell::TrianglePair tp;
+  };
+  // Pass 1 for listed pair i: reads positions and the boxes of this step, writes only `out`.
+  void screen(const std::vector<Vec3>& x, std::size_t i, std::vector<Hit>& out) const {
+    const Candidate& c = pairs_[i];
+    // boxes grown by h/2 that do not overlap: more than h apart
+    if ((box_lo_[c.t1].array() > box_hi_[c.t2].array()).any() ||
+        (box_lo_[c.t2].array() > box_hi_[c.t1].array()).any())
+      return;
+    const auto& T = mesh_->mesh.tri;
+    std::array<Vec3, 3> A, B;
+    for (int k = 0; k < 3; ++k) {
+      A[k] = x[base_ + T[c.t1][k]];
+      B[k] = x[base_ + T[c.t2][k]];
+    }
+    const Vec3 n1 = (A[1] - A[0]).cross(A[2] - A[0]), n2 = (B[1] - B[0]).cross(B[2] - B[0]);
+    // near neighbours touch only across a ridge (or never)
+    if (c.near && (near_never_ || n1.dot(n2) > 0)) return;
+    if (separated(A, B, n1, n2)) return;
+    const std::size_t before = out.size();
+    if (dense_all_) {
+      shell::for_each_feature_pair(
+          A, B,
+          [&](const shell::TrianglePair& tp) {
+            if (tp.dist < h_) out.push_back(Hit{i, true, n1, tp});
+          },
+          masks_[c.t1], masks_[c.t2]);
+    } else {
+      const shell::TrianglePair tp = shell::triangle_distance(A, B);
+      if (tp.dist < h_) out.push_back(Hit{i, true, n1, tp});
+    }
+    if (out.size() == before) out.push_back(Hit{i, false, Vec3::Zero(), shell::TrianglePair{}});
+  }
+
   struct Candidate {
     int t1, t2;
     bool near;
@@ -593,6 +621,8 @@ class ShellContactPair : public PairStyle {
   double force_sum_ = 0;
   std::vector<double> face_flag_;
   std::vector<Vec3> points_, forces_;
+  std::vector<Hit> hits_;
+  std::vector<std::vector<Hit>> hit_parts_;
 };
 
 }  // namespace slender

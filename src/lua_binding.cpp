@@ -238,6 +238,17 @@ ParamSpec minimize_spec() {
        "where there is contact); \"auto\": unlimited")
       .def(std::string("auto"))
       .positive();
+  s.string("precondition",
+           "lbfgs: \"hessian\" takes the factorised exact Hessian (shifted until positive "
+           "definite) as the initial inverse Hessian, for ill-conditioned scenes such as thin "
+           "shells; \"none\": a scalar (integrator lbfgs's parameter of the same name)")
+      .def(std::string("none"))
+      .choices({"none", "hessian"});
+  s.integer("precondition_every",
+            "lbfgs with precondition = \"hessian\": iterations between refactorisations (0: at "
+            "the start and after a restart)")
+      .def(200.0)
+      .min(0);
   s.real("keep_factorization",
          "newton: keep the last factorisation while an iteration cuts the largest force by at "
          "least this factor (modified Newton: a solve instead of an assembly and a "
@@ -642,7 +653,11 @@ int l_minimize(lua_State* L) {
   auto p = minimize_spec().validate(to_raw(L, 2));
   const std::string method = p.str("method");
   RawParams lbfgs;
-  if (method == "lbfgs") lbfgs["memory"] = static_cast<double>(p.integer("memory"));
+  if (method == "lbfgs") {
+    lbfgs["memory"] = static_cast<double>(p.integer("memory"));
+    lbfgs["precondition"] = p.str("precondition");
+    lbfgs["precondition_every"] = static_cast<double>(p.integer("precondition_every"));
+  }
   if ((method == "lbfgs" || method == "newton") && !p.is_auto("max_move"))
     lbfgs["max_move"] = p.real("max_move");
   if (method == "newton") lbfgs["keep_factorization"] = p.real("keep_factorization");

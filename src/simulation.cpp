@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "registry.hpp"
+#include "statics.hpp"
 
 namespace slender {
 
@@ -57,6 +58,11 @@ Context& context_of(Simulation& sim) {
   return sim.context();
 }
 Simulation::~Simulation() = default;
+
+StaticSystem& Simulation::static_system() {
+  if (!static_system_) static_system_ = std::make_unique<StaticSystem>(*this);
+  return *static_system_;
+}
 
 void Simulation::set_threads(int n) {
   if (n < 1 || n > kMaxThreads)

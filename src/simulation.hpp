@@ -28,6 +28,8 @@
 
 namespace slender {
 
+class StaticSystem;
+
 // The run became unstable; the message says what, when, and which dt is stable.
 struct InstabilityError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -107,6 +109,10 @@ class Simulation {
   int dimension() const { return dim_; }
   // What the force styles see of this scene (src/context.hpp).
   Context& context() { return *context_; }
+  // The static system of the scene (src/statics.hpp), kept between minimisations so that
+  // the sparse ordering and the last Levenberg shift carry over from one load increment to
+  // the next.
+  StaticSystem& static_system();
   NodeStore& nodes() { return nodes_; }
   const NodeStore& nodes() const { return nodes_; }
   Topology& topology() { return topo_; }
@@ -300,6 +306,7 @@ class Simulation {
 
   int dim_;
   std::unique_ptr<Context> context_;
+  std::unique_ptr<StaticSystem> static_system_;
   std::uint64_t seed_;
   std::mt19937_64 rng_;
   int threads_ = 1;

@@ -125,11 +125,14 @@ long StaticSystem::factorize(double mu) {
   return negative;
 }
 
-Eigen::VectorXd StaticSystem::forces() const {
-  const auto& f = sim_.nodes().f;
-  Eigen::VectorXd out(K_.rows());
-  for (size_t k = 0; k < free_.size(); ++k)
-    if (free_[k] >= 0) out[free_[k]] = f[k / 3][static_cast<int>(k % 3)];
+const std::vector<Vec3>& StaticSystem::sim_nodes_f() const {
+  return sim_.nodes().f;
+}
+
+Eigen::VectorXd StaticSystem::gather(const std::vector<Vec3>& v) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(K_.rows());
+  for (size_t k = 0; k < free_.size() && k / 3 < v.size(); ++k)
+    if (free_[k] >= 0) out[free_[k]] = v[k / 3][static_cast<int>(k % 3)];
   return out;
 }
 

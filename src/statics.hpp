@@ -37,13 +37,20 @@ class StaticSystem {
   // (K + mu I)^{-1} r with the last factorisation
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return ldlt_.solve(r); }
   // The nodal forces of the last evaluation on the free components.
-  Eigen::VectorXd forces() const;
+  Eigen::VectorXd forces() const { return gather(sim_nodes_f()); }
+  // A per-node vector's free components.
+  Eigen::VectorXd gather(const std::vector<Vec3>& v) const;
   // A vector over the free components as one displacement per node (held ones 0).
   std::vector<Vec3> per_node(const Eigen::VectorXd& v) const;
   // The largest |K_ii| (a scale for shifts).
   double diagonal_scale() const;
+  // The Levenberg shift of the last positive definite factorisation a minimiser settled on
+  // (0: none); the next minimisation's ladder starts from a tenth of it.
+  double last_shift() const { return last_shift_; }
+  void set_last_shift(double mu) { last_shift_ = mu; }
 
  private:
+  const std::vector<Vec3>& sim_nodes_f() const;
   // free[3 i + c]: the row of component c of node i, or -1; returns the count
   int free_components(std::vector<int>& free) const;
 
@@ -59,6 +66,7 @@ class StaticSystem {
   std::vector<double> values_;
   std::vector<int> slot_, diagonal_;
   long pattern_version_ = 0, analyzed_version_ = -1;
+  double last_shift_ = 0.0;
 };
 
 }  // namespace slender

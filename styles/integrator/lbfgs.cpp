@@ -5,6 +5,11 @@
 // finite-difference tested for; velocity-dependent forces vanish (the nodes are held
 // at rest) and friction springs keep the force they had. Used by sim:minimize{method =
 // "lbfgs"}; far fewer force evaluations than FIRE on stiff, smooth problems (shells).
+// With precondition = "hessian" the two-loop recursion's initial inverse Hessian is the
+// factorised exact Hessian, shifted until positive definite (docs/models.md §9.3): the
+// thin shell's membrane and bending stiffnesses, (L/h)^2 apart, stop setting the count of
+// iterations.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -30,12 +35,30 @@ class LbfgsMinimizer : public IntegratorStyle {
           "unlimited")
         .def(std::string("auto"))
         .positive();
+    s.string("precondition",
+             "none: the initial inverse Hessian of the two-loop recursion is a scalar (the last "
+             "pair's s.y / y.y); hessian: (K + mu I)^-1, the exact Hessian K of every force "
+             "style factorised by sparse LDL^T with the smallest shift mu of a Levenberg ladder "
+             "that makes it positive definite, at the start of the minimisation, every "
+             "precondition_every iterations and after a restart (docs/models.md §9.3); for "
+             "ill-conditioned scenes such as thin shells")
+        .def(std::string("none"))
+        .choices({"none", "hessian"});
+    s.integer("precondition_every",
+              "iterations between refactorisations of the preconditioner: a Hessian far from "
+              "the current state (a large rotation since) preconditions badly (0: only at the "
+              "start and after a restart)")
+        .def(200.0)
+        .min(0);
     s.output("restarts", "number of restarts from steepest descent after a failed line search");
+    s.output("factorizations", "number of preconditioner factorisations (precondition = hessian)");
     s.output("evaluations", "number of force evaluations in the iterations");
     return s;
   }
   LbfgsMinimizer(Simulation&, const ParamValues& p)
       : memory_(static_cast<size_t>(p.integer("memory"))),
+        precondition_(p.str("precondition") == "hessian"),
+        precondition_every_(p.integer("precondition_every")),
         max_move_(p.is_auto("max_move") ? std::numeric_limits<double>::infinity()
                                         : p.real("max_move")) {
     read_time_step(p);
@@ -54,6 +77,10 @@ class LbfgsMinimizer : public IntegratorStyle {
     for (size_t i = 0; i < n.n_owned(); ++i) m = std::max(m, n.mass[i]);
     gamma0_ = dt > 0 && m > 0 ? dt * dt / m : 1.0;
     if (!sim.forces_valid) sim.compute_forces();
+    if (precondition_) {
+      system_ = &sim.static_system();
+      factor();  // names a style without a Hessian before the first step
+    }
   }
 
   void step(Simulation& sim) override {
@@ -68,10 +95,16 @@ class LbfgsMinimizer : public IntegratorStyle {
       a[k] = history_[k].rho * dot(history_[k].s, d);
       axpy(-a[k], history_[k].y, d);
     }
-    const double gamma = history_.empty() ? gamma0_
-                                          : dot(history_.back().s, history_.back().y) /
-                                                dot(history_.back().y, history_.back().y);
-    for (auto& v : d) v *= gamma;
+    if (precondition_) {
+      if (precondition_every_ > 0 && since_factor_ >= precondition_every_) factor();
+      ++since_factor_;
+      apply_preconditioner(d);
+    } else {
+      const double gamma = history_.empty() ? gamma0_
+                                            : dot(history_.back().s, history_.back().y) /
+                                                  dot(history_.back().y, history_.back().y);
+      for (auto& v : d) v *= gamma;
+    }
     for (size_t k = 0; k < history_.size(); ++k) {
       const double b = history_[k].rho * dot(history_[k].y, d);
       axpy(a[k] - b, history_[k].s, d);
@@ -79,7 +112,12 @@ class LbfgsMinimizer : public IntegratorStyle {
     double slope = -dot(n.f, d);  // g . d
     if (!(slope < 0)) {           // not downhill: forget the curvature, steepest descent
       history_.clear();
-      for (size_t i = 0; i < N; ++i) d[i] = gamma0_ * n.f[i];
+      if (precondition_) {
+        d.assign(n.f.begin(), n.f.begin() + static_cast<long>(N));
+        apply_preconditioner(d);
+      } else {
+        for (size_t i = 0; i < N; ++i) d[i] = gamma0_ * n.f[i];
+      }
       slope = -dot(n.f, d);
     }
     double dmax = 0.0;
@@ -111,6 +149,7 @@ class LbfgsMinimizer : public IntegratorStyle {
       ++evaluations_;
       history_.clear();
       ++restarts_;
+      if (precondition_) factor();
       sim.end_of_step();
       return;
     }
@@ -140,6 +179,7 @@ class LbfgsMinimizer : public IntegratorStyle {
   double value(const std::string& key) const override {
     if (key == "restarts") return static_cast<double>(restarts_);
     if (key == "evaluations") return static_cast<double>(evaluations_);
+    if (key == "factorizations") return static_cast<double>(factorizations_);
     return IntegratorStyle::value(key);
   }
 
@@ -148,6 +188,35 @@ class LbfgsMinimizer : public IntegratorStyle {
     std::vector<Vec3> s, y;
     double rho = 0.0;
   };
+  // K (+ mu I) at the current state, factorised: mu up a ladder of tenfold shifts until no
+  // pivot is negative (a free body's rigid motions and a state away from equilibrium make K
+  // singular or indefinite), from 0, or from a tenth of the shift the last factorisation
+  // (of this minimisation or the scene's last one) settled on, not below 1e-8 of the
+  // largest diagonal entry: consecutive load increments need similar shifts, and each rung
+  // is a factorisation.
+  void factor() {
+    system_->assemble();
+    const double scale = system_->diagonal_scale();
+    const double last = system_->last_shift();
+    double mu = last > 0.0 ? std::max(0.1 * last, 1e-8 * scale) : 0.0;
+    for (int tries = 0;; ++tries) {
+      const long negative = system_->factorize(mu);
+      ++factorizations_;
+      if (negative == 0) break;
+      if (tries > 60)
+        throw InputError(
+            "integrator 'lbfgs': the preconditioner's Hessian stays singular however it is "
+            "shifted (NaN in the state?)");
+      mu = mu == 0.0 ? 1e-8 * scale : 10.0 * mu;
+    }
+    system_->set_last_shift(mu);
+    since_factor_ = 0;
+  }
+  // d <- (K + mu I)^-1 d over the free components (held ones 0)
+  void apply_preconditioner(std::vector<Vec3>& d) const {
+    const std::vector<Vec3> r = system_->per_node(system_->solve(system_->gather(d)));
+    for (size_t i = 0; i < d.size(); ++i) d[i] = r[i];
+  }
   static double dot(const std::vector<Vec3>& u, const std::vector<Vec3>& v) {
     double r = 0.0;
     const size_t N = std::min(u.size(), v.size());
@@ -159,6 +228,10 @@ class LbfgsMinimizer : public IntegratorStyle {
   }
 
   size_t memory_;
+  bool precondition_;
+  long precondition_every_;
+  StaticSystem* system_ = nullptr;
+  long since_factor_ = 0, factorizations_ = 0;
   double max_move_;
   double gamma0_ = 1.0;
   std::deque<Pair> history_;

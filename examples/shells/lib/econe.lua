@@ -124,7 +124,11 @@ function M.build(opts)
   local method = ({fire = "fire", lbfgs = "lbfgs", damped = "dynamics", newton = "newton"})[s.minimizer]
   local lbfgs = s.minimizer == "lbfgs" and
                 -- memory 20: 20 % faster than 50 on the default ramp (docs/shells/README.md)
-                {memory = slender.var("memory", 20), max_move = s.h / 4} or {}
+                {memory = slender.var("memory", 20), max_move = s.h / 4,
+                 -- -v precondition=hessian: the factorised exact Hessian as L-BFGS's
+                 -- initial inverse Hessian (docs/models.md §9.3)
+                 precondition = slender.var("precondition", opts.precondition or "none"),
+                 precondition_every = slender.var("precondition_every", 200)} or {}
   -- Newton keeps a factorisation while an iteration halves the largest force (modified
   -- Newton, docs/models.md §9.3; -v keep_factorization=0: plain Newton): 3.4x faster to
   -- phi_e = 2 than plain Newton before the kept pattern, the same Eb_hat to 1e-5
@@ -133,6 +137,8 @@ function M.build(opts)
     sim:modify("g", {phi_e = phi})
     local n = sim:minimize{ftol = s.ftol, max_steps = s.max_steps, method = method, ketol = s.ketol,
                            memory = lbfgs.memory, max_move = lbfgs.max_move,
+                           precondition = lbfgs.precondition,
+                           precondition_every = lbfgs.precondition_every,
                            keep_factorization = keep}
     s.steps_total = s.steps_total + n
     return n

@@ -5,8 +5,9 @@
 -- self-contact ("kissing" excess angle, refined by bisection), then the contact-plane angle gamma. Plots
 -- econe.png (energies and gamma against phi_e) and shape.png (the final surface coloured by U_b).
 -- Run time: -v fast=1 about 15 s (L-BFGS 7 s); the default (h = 0.02, edge 1/16, phi_e to 12) about 25 min
--- of CPU (34 min measured with two other jobs sharing two cores); with -v minimizer=lbfgs 135-180 s on one
--- core (two machines of the same kind), 110-115 s with slender -t 2.
+-- of CPU (34 min measured with two other jobs sharing two cores); with -v minimizer=lbfgs (preconditioned
+-- by the exact Hessian) 89 s on one core, 84 s with slender -t 2 (plain L-BFGS, -v precondition=none:
+-- 180 s and 115 s).
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_max=12 -v dphi=0.1 -v out=DIR -v boundary=mirror|combined
 --          -v inner=0.25 grows a ring (annulus R_i <= r <= 1, both edges free; S-4) instead of a disc
 --          -v mode=3 -v mode_amp=1e-3 starts from z = amp r^2 cos(3 phi) (the n = 3 e-cone of S-5)

@@ -48,7 +48,9 @@ sim:integrator("fire", {})
 local t0 = slender.clock()
 local method = slender.var("integrator", "fire")
 local steps = sim:minimize { ftol = slender.var("ftol_rel", 1e-6) * q * (a / n) ^ 2, max_steps = 2000000,
-                             method = method, memory = slender.var("memory", 50) }
+                             method = method, memory = slender.var("memory", 50),
+                             -- -v precondition=hessian: L-BFGS on the factorised exact Hessian
+                             precondition = method == "lbfgs" and slender.var("precondition", "none") or nil }
 local wall = slender.clock() - t0
 local w = sim:value("centre.uz")
 local err = math.abs(w / w_ref - 1)

@@ -13,6 +13,7 @@
 #include "context.hpp"
 #include "h5util.hpp"
 #include "simulation.hpp"
+#include "statics.hpp"
 
 namespace slender {
 
@@ -112,8 +113,9 @@ void Simulation::write_checkpoint(const std::string& path) {
     h5::write_string(st, "rng", rng.str());
     h5::write_doubles(st, "scalars",
                       {static_cast<double>(step), time, dt, forces_valid ? 1.0 : 0.0,
-                       static_cast<double>(dim_), energy_scale_, static_cast<double>(state_epoch)},
-                      {7});
+                       static_cast<double>(dim_), energy_scale_, static_cast<double>(state_epoch),
+                       static_system_ ? static_system_->last_shift() : 0.0},
+                      {8});
     auto en = h5::create_group(st, "energy");
     for (auto& [k, e] : energy_) h5::write_doubles(en, k, {e}, {1});
     auto nodes = h5::create_group(f, "nodes");
@@ -198,6 +200,9 @@ void Simulation::read_checkpoint_checked(const std::string& path) {
   auto sc = h5::read_doubles(st, "scalars");
   if (sc.size() < 7 || !all_finite(sc))
     throw bad("dataset state/scalars must hold 7 finite numbers (step, time, dt, ...)");
+  // the 8th (since 2026-12-07): the Levenberg shift a minimiser's preconditioner settled on
+  const double statics_shift = sc.size() > 7 ? sc[7] : 0.0;
+  if (statics_shift < 0) throw bad("dataset state/scalars holds a negative Levenberg shift");
   if (sc[0] < 0 || sc[0] != std::floor(sc[0]) || sc[0] > 9.007199254740992e15 || sc[2] < 0 ||
       sc[6] != std::floor(sc[6]) || std::abs(sc[6]) > 9.007199254740992e15)
     throw bad("dataset state/scalars holds an impossible step " + num(sc[0]) + " or time step " +
@@ -360,6 +365,8 @@ void Simulation::read_checkpoint_checked(const std::string& path) {
   forces_valid = sc[3] != 0.0;
   energy_scale_ = sc[5];
   state_epoch = static_cast<long>(sc[6]);
+  // a minimisation after the restart starts its shift ladder where the saved run would have
+  if (statics_shift > 0 || static_system_) static_system().set_last_shift(statics_shift);
   energy_ = std::move(energy);
   for (auto& c : topo_.chains) groups_[c.name] = c.nodes;
 }

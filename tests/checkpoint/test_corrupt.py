@@ -101,7 +101,11 @@ def main():
             "bad rng": (edit(lambda f: replace(f, "state/rng", np.array(
                 [float(c) for c in b"not a random stream"]))), "state/rng is not"),
             "negative step": (edit(lambda f: replace(f, "state/scalars", np.where(
-                np.arange(7) == 0, -5.0, f["state/scalars"][:]))), "impossible step"),
+                np.arange(f["state/scalars"].shape[0]) == 0, -5.0, f["state/scalars"][:]))),
+                              "impossible step"),
+            "negative shift": (edit(lambda f: replace(f, "state/scalars", np.where(
+                np.arange(f["state/scalars"].shape[0]) == 7, -1.0, f["state/scalars"][:]))),
+                               "negative Levenberg shift"),
         }
         failures = []
         for name, (corrupt, words) in cases.items():

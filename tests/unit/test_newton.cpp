@@ -4,6 +4,7 @@
 // add_hessian of spring, bend2d and the fixes.
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 
 #include "context.hpp"
 #include "continuation.hpp"
@@ -229,6 +230,35 @@ TEST(LbfgsPreconditioner, ShiftsAnIndefiniteHessianAndFindsTheBuckledColumn) {
   EXPECT_NEAR(std::abs(sim->nodes().x[41].y()), 2.0 * k / Kk, 0.01);
   EXPECT_GT(sim->static_system().last_shift(), 0.0);  // the ladder was climbed
 }
+
+#ifdef SLENDER_HAVE_HDF5
+// The preconditioner's Levenberg shift carries from one minimisation to the next (the
+// ladder starts from a tenth of it), so it goes into checkpoints: a ramp resumed from one
+// continues as the uninterrupted ramp does, bit for bit.
+TEST(LbfgsPreconditioner, AResumedRampContinuesBitForBit) {
+  const double load = 1.3 * M_PI * M_PI / 4.0;  // past Euler's load: shifted factorisations
+  auto make = [&] { return cantilever(21, Vec3(-load, 0, 0), 1e-3); };
+  const RawParams p = P({{"precondition", std::string("hessian")}, {"precondition_every", 20.0}});
+  auto ramp = [&](Simulation& sim, int from, int to) {
+    for (int k = from; k < to; ++k) {
+      sim.modify_style("load", P({{"force", std::vector<double>{-load * (1 + 0.05 * k), 0.0}}}));
+      sim.minimize(1e-8, 20000, "lbfgs", p);
+    }
+  };
+  auto a = make();
+  a->set_integrator("verlet", {});
+  ramp(*a, 0, 2);
+  a->write_checkpoint("lbfgs_preconditioned_ramp.h5");
+  EXPECT_GT(a->static_system().last_shift(), 0.0);
+  ramp(*a, 2, 4);
+  auto b = make();
+  b->set_integrator("verlet", {});
+  b->read_checkpoint("lbfgs_preconditioned_ramp.h5");
+  ramp(*b, 2, 4);
+  for (std::size_t i = 0; i < a->nodes().size(); ++i) EXPECT_EQ(a->nodes().x[i], b->nodes().x[i]);
+  std::remove("lbfgs_preconditioned_ramp.h5");
+}
+#endif
 
 TEST(Newton, NamesTheStyleWithoutAHessian) {
   Simulation sim(2, 1);

@@ -1,13 +1,13 @@
--- E-cone (docs/models.md §7.2 S-1): a free disc grows circumferentially, phi_e ramped from 0 in steps with a
--- FIRE relaxation after each (-v minimizer=lbfgs: L-BFGS; -v minimizer=newton: Newton with exact Hessians;
--- -v minimizer=damped: damped Newmark dynamics to a
+-- E-cone (docs/models.md §7.2 S-1): a free disc grows circumferentially, phi_e ramped from 0 in steps with an
+-- L-BFGS relaxation preconditioned by the exact Hessian after each (-v precondition=none: plain L-BFGS;
+-- -v minimizer=fire: FIRE; -v minimizer=newton: Newton with exact Hessians; -v minimizer=damped: damped
+-- Newmark dynamics to a
 -- force and a kinetic-energy tolerance; see lib/econe.lua); records E_b_hat(phi_e), the energies, the number of wings and the first
 -- self-contact ("kissing" excess angle, refined by bisection), then the contact-plane angle gamma. Plots
 -- econe.png (energies and gamma against phi_e) and shape.png (the final surface coloured by U_b).
--- Run time: -v fast=1 about 15 s (L-BFGS 7 s); the default (h = 0.02, edge 1/16, phi_e to 12) about 25 min
--- of CPU (34 min measured with two other jobs sharing two cores); with -v minimizer=lbfgs (preconditioned
--- by the exact Hessian) 89 s on one core, 84 s with slender -t 2 (plain L-BFGS, -v precondition=none:
--- 180 s and 115 s).
+-- Run time: -v fast=1 about 4 s (FIRE 15 s); the default (h = 0.02, edge 1/16, phi_e to 12) 89 s on one
+-- core, 75-84 s with slender -t 2 (plain L-BFGS, -v precondition=none: 180 s and 115 s; FIRE, -v
+-- minimizer=fire: about 25 min of CPU, 34 min measured with two other jobs sharing two cores).
 -- Options: -v h=0.02 -v edge=0.0625 -v phi_max=12 -v dphi=0.1 -v out=DIR -v boundary=mirror|combined
 --          -v inner=0.25 grows a ring (annulus R_i <= r <= 1, both edges free; S-4) instead of a disc
 --          -v mode=3 -v mode_amp=1e-3 starts from z = amp r^2 cos(3 phi) (the n = 3 e-cone of S-5)
@@ -23,9 +23,10 @@ local fast = slender.var("fast", 0) == 1
 local phi_max = slender.var("phi_max", fast and 5.5 or 12.0)
 local dphi = slender.var("dphi", fast and 0.5 or 0.1)
 local kiss_bisections = slender.var("kiss_bisections", fast and 4 or 6)
--- with -v minimizer=lbfgs the factorised exact Hessian preconditions L-BFGS (84 s instead
--- of 115 s on the default mesh, docs/shells/README.md; -v precondition=none: plain)
-local scene = require("lib.econe").build{fast = fast, out = "econe_out", precondition = "hessian"}
+-- L-BFGS preconditioned by the factorised exact Hessian: 84 s on the default mesh against
+-- 115 s plain and ~25 min for FIRE, nearer Newton's equilibria (docs/shells/README.md)
+local scene = require("lib.econe").build{fast = fast, out = "econe_out", minimizer = "lbfgs",
+                                         precondition = "hessian"}
 local sim, relax, record, out = scene.sim, scene.relax, scene.record, scene.out
 local h, edge, inner, nodes, tris = scene.h, scene.edge, scene.inner, scene.nodes, scene.tris
 local kiss, kiss_lo, wings_before = nil, nil, 0

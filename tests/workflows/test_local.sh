@@ -271,7 +271,7 @@ echo "validation: 6 rows equal the script's, a failing run fails the checked rep
 t0=$SECONDS
 study shell_core_radius || { tail -n 30 "$tmp/shell_core_radius.log"; fail "shell_core_radius"; }
 mkdir -p "$tmp/econe_ref"
-(cd "$tmp/econe_ref" && "$bin" -q "$repo/examples/shells/econe.lua" -v fast=1 -v h=0.04 -v phi_max=1.0 \
+(cd "$tmp/econe_ref" && "$bin" -q "$repo/examples/shells/econe.lua" -v fast=1 -v minimizer=fire -v h=0.04 -v phi_max=1.0 \
   -v contact=0 -v plots=0 -v edge=0.25 -v refine_center=0.3 -v refine_levels=1 -v out=o > run.log 2>&1) ||
   fail "the e-cone reference run"
 check shell_core_radius << PY

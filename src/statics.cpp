@@ -125,8 +125,8 @@ long StaticSystem::factorize(double mu) {
   return negative;
 }
 
-const std::vector<Vec3>& StaticSystem::sim_nodes_f() const {
-  return sim_.nodes().f;
+Eigen::VectorXd StaticSystem::forces() const {
+  return gather(sim_.nodes().f);
 }
 
 Eigen::VectorXd StaticSystem::gather(const std::vector<Vec3>& v) const {

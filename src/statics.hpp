@@ -37,7 +37,7 @@ class StaticSystem {
   // (K + mu I)^{-1} r with the last factorisation
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return ldlt_.solve(r); }
   // The nodal forces of the last evaluation on the free components.
-  Eigen::VectorXd forces() const { return gather(sim_nodes_f()); }
+  Eigen::VectorXd forces() const;
   // A per-node vector's free components.
   Eigen::VectorXd gather(const std::vector<Vec3>& v) const;
   // A vector over the free components as one displacement per node (held ones 0).
@@ -50,7 +50,6 @@ class StaticSystem {
   void set_last_shift(double mu) { last_shift_ = mu; }
 
  private:
-  const std::vector<Vec3>& sim_nodes_f() const;
   // free[3 i + c]: the row of component c of node i, or -1; returns the count
   int free_components(std::vector<int>& free) const;
 

@@ -893,7 +893,8 @@ class KoiterShell : public ShellStyle {
     };
     auto kernel = [&](int tid, std::size_t begin, std::size_t end, Vec3* fo) {
       double Es = 0, Eb = 0, area = 0, ub_int = 0;
-      for (std::size_t g = element_start(begin); g < element_start(end); ++g) {
+      const std::size_t last = element_start(end);
+      for (std::size_t g = element_start(begin); g < last; ++g) {
         const GaussPoint& gp = gauss_[g];
         const shell::ShapeRow* R = &rows_[gp.row0];
         Vec3 a1 = Vec3::Zero(), a2 = a1, a11 = a1, a12 = a1, a22 = a1;

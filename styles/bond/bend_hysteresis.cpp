@@ -178,7 +178,7 @@ class BendHysteresisBond : public ChainBondStyle {
     const auto& v = sim.nodes().v;
     double energy = 0.0;
     // the dissipated energy of threads 1.. is added after the kernel, in thread order;
-    // thread 0 adds straight into the running total (the serial order)
+    // thread 0 adds straight into the running total
     std::array<double, kMaxThreads> lost_part{};
     fields_.clear();
     for (auto* c : chains(sim)) {
@@ -186,8 +186,10 @@ class BendHysteresisBond : public ChainBondStyle {
       energy += sim.parallel_chain_forces(
           static_cast<std::size_t>(c->n_hinges()), c->closed, c->n_nodes(), c->closed ? -1 : 0,
           c->closed ? 1 : 2, [&](int tid, std::size_t begin, std::size_t end, ChainForces& f) {
-            double e_part = 0.0;
-            double& lost_sum = tid == 0 ? dissipated_ : lost_part[static_cast<std::size_t>(tid)];
+            // summed in a register and stored once per range: a running total in memory
+            // (this style's members, or neighbouring array slots) shared its cache line
+            // with the other thread's, written at every hinge
+            double e_part = 0.0, lost_sum = 0.0;
             for (std::size_t k = begin; k < end; ++k) {
               const int h = static_cast<int>(k);
               int a, m, b;
@@ -206,6 +208,7 @@ class BendHysteresisBond : public ChainBondStyle {
               e_part += stored * l0;
               fields_.set(m, kappa, stored * l0);
             }
+            (tid == 0 ? dissipated_ : lost_part[static_cast<std::size_t>(tid)]) += lost_sum;
             return e_part;
           });
       for (int t = 1; t < T; ++t) {

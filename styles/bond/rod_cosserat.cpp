@@ -244,9 +244,12 @@ class CosseratRodBond : public ChainBondStyle {
         const size_t count = static_cast<size_t>(std::max(0, (open_part - parity + 1) / 2));
         std::array<double, kMaxThreads> b_part{}, t_part{};
         parallel_ranges(T, count, [&](int tid, size_t begin, size_t end) {
+          // summed in registers, stored once: the threads' slots share a cache line
+          double b_sum = 0.0, t_sum = 0.0;
           for (size_t j = begin; j < end; ++j)
-            vertex(parity + 2 * static_cast<int>(j), b_part[static_cast<size_t>(tid)],
-                   t_part[static_cast<size_t>(tid)]);
+            vertex(parity + 2 * static_cast<int>(j), b_sum, t_sum);
+          b_part[static_cast<size_t>(tid)] = b_sum;
+          t_part[static_cast<size_t>(tid)] = t_sum;
         });
         for (int t = 0; t < T; ++t) {
           bend += b_part[static_cast<size_t>(t)];

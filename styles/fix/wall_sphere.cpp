@@ -93,7 +93,7 @@ class SphereWallFix : public FixStyle {
     const double clear = (r_ - 0.5 * d_) * (1.0 - 1e-9);
     const double clear2 = clear > 0 ? clear * clear : -1.0;
     // each node is one work item and touches only its own force and history
-    struct Part {
+    struct alignas(64) Part {  // one cache line per thread: written at every contact
       double e = 0.0, total = 0.0;
       int contacts = 0;
     };

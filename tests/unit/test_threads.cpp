@@ -330,3 +330,52 @@ TEST(Threads, ChainBondsGiveTheSerialForcesBitForBit) {
       }
     }
 }
+
+// A chain grown at both ends (injection) numbers its new nodes alternately at its two
+// ends, so the threads' ranges along the chain hold interleaved node indices: the forces
+// stay bit-identical to one thread.
+TEST(Threads, ChainGrownAtBothEndsGivesTheSerialForcesBitForBit) {
+  const int n0 = 100, grown = 1400;  // 1 500 nodes, >= 256 hinges per thread on three
+  const std::size_t N = n0 + grown;
+  for (bool hysteresis : {false, true}) {
+    std::vector<std::unique_ptr<Simulation>> sims;
+    for (int threads : {1, 2, 3}) {
+      auto sim = std::make_unique<Simulation>(2, 7);
+      sim->verbose = false;
+      sim->set_threads(threads);
+      sim->set_threads_min_nodes(0);
+      auto at = [](int p) {  // a wiggly circle by chain position
+        const double phi = 2 * M_PI * p / 1700.0;
+        const double r = 270 + 3 * std::sin(9 * phi);
+        return Vec3(r * std::cos(phi), r * std::sin(phi), 0.0);
+      };
+      std::vector<Vec3> pts;
+      for (int i = 0; i < n0; ++i) pts.push_back(at(i));
+      sim->add_chain("w", pts, 1.0, false);
+      for (int k = 0; k < grown; ++k) {
+        const bool front = k % 2 == 0;
+        sim->grow_chain("w", front, at(front ? -(k / 2 + 1) : n0 + k / 2), 1.0, 1.0);
+      }
+      sim->add_bond("spring", P({{"k", 1000.0}}));
+      if (hysteresis)
+        sim->add_bond("bend2d/hysteresis", P({{"k", 60.0}, {"yield_curvature", 0.02}}));
+      else
+        sim->add_bond("bend2d", P({{"k", 60.0}}));
+      std::mt19937 g(11);
+      std::uniform_real_distribution<double> u(-0.05, 0.05);
+      for (auto& v : sim->nodes().v) v = Vec3(u(g), u(g), 0.0);
+      for (auto& x : sim->nodes().x) x += Vec3(u(g), u(g), 0.0);
+      sim->compute_forces();
+      sims.push_back(std::move(sim));
+    }
+    const auto& f1 = sims[0]->nodes().f;
+    ASSERT_EQ(f1.size(), N);
+    ASSERT_GT(f1[N / 2].norm() + f1[N - 1].norm(), 0.0);
+    for (int t = 1; t < 3; ++t) {
+      const auto& ft = sims[static_cast<std::size_t>(t)]->nodes().f;
+      for (std::size_t i = 0; i < N; ++i)
+        ASSERT_EQ(f1[i], ft[i]) << (hysteresis ? "bend2d/hysteresis" : "bend2d") << ", " << t + 1
+                                << " threads, node " << i;
+    }
+  }
+}

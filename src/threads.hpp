@@ -30,11 +30,12 @@ namespace slender {
 // threads (a few microseconds) would exceed the work.
 inline constexpr std::size_t kMinItemsPerThread = 256;
 // The same for light passes over the nodes (a few flops per node: the integrator's
-// updates, zeroing, the drag, the wall, the guard's scan). A parallel region cost 3.7 us
-// on the 2-core development machine, as much as such a pass over 4 000-8 000 nodes; with
-// these passes threaded, two threads ran the crumpling decks at 2 900-4 400 nodes 1.3-1.4x
-// slower than one (docs/performance.md, "Light passes on one thread below 8 192 nodes").
-inline constexpr std::size_t kMinLightItemsPerThread = 4096;
+// updates, zeroing, the drag, the wall, the guard's scan). A parallel region costs
+// 0.6 us on the 2-core development machine, a pass over 1 000 nodes about as much. (At
+// 4096, with the hysteresis hinges' false sharing removed, two threads ran a crumpling
+// stretch at 2 500-2 800 nodes 15 % slower than at 1024: docs/performance.md, "Threads
+// that pay at 2 000-4 000 nodes".)
+inline constexpr std::size_t kMinLightItemsPerThread = 1024;
 // A scene smaller than this runs on one thread (Simulation::threads_min_nodes; measured,
 // docs/performance.md "Threads"). SLENDER_THREADS_MIN_NODES overrides it.
 inline constexpr std::size_t kThreadsMinNodes = 2000;

@@ -133,13 +133,13 @@ TEST(Threads, RangesCoverTheWorkOnceInOrder) {
   EXPECT_EQ(threads_for(100000, 2), 2);
   EXPECT_EQ(threads_for(100000, 1000), kMaxThreads);
   // light passes over the nodes take a thread per kMinLightItemsPerThread nodes: a chain of
-  // a few thousand nodes runs them serially while its force kernels use two threads
-  EXPECT_EQ(threads_for(3000, 2), 2);
-  EXPECT_EQ(threads_for(3000, 2, kMinLightItemsPerThread), 1);
+  // 1 500 nodes runs them serially while its force kernels use two threads
+  EXPECT_EQ(threads_for(1500, 2), 2);
+  EXPECT_EQ(threads_for(1500, 2, kMinLightItemsPerThread), 1);
   EXPECT_EQ(threads_for(2 * kMinLightItemsPerThread - 1, 2, kMinLightItemsPerThread), 1);
   EXPECT_EQ(threads_for(2 * kMinLightItemsPerThread, 2, kMinLightItemsPerThread), 2);
   int used = 0;
-  std::vector<int> seen(3000, 0);
+  std::vector<int> seen(1500, 0);
   used = parallel_ranges(
       2, seen.size(),
       [&](int, std::size_t b, std::size_t e) {

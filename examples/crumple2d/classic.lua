@@ -2,8 +2,8 @@
 -- near the wall with two-fold symmetry, run until the wire jams.
 -- Expected run time (one core): f = 10 (fast mode, -v fast=1): ~1 s; f = 30: ~35 s; f = 50:
 -- ~4-5 min (2.2 M adaptive Verlet steps, jams near phi = 0.4-0.49; 140 s with -t 2); f = 100:
--- 53-90 min (7-8.4 M steps, phi_jam 0.38-0.44, four seeds; 4.6 h and 73.7 M steps with the
--- old Gear step).
+-- 53-90 min (7-8.4 M steps, phi_jam 0.38-0.44, four seeds; 28 min with -t 2; 4.6 h and 73.7 M
+-- steps with the old Gear step).
 -- Thesis parameters: f = 100, kappa_theta = 0.04, mu_st = 5, s = 0.08 (feed speed).
 -- Under the decks' drag before 2026-12-07 (-v drag_factor=1) the wire folded along the feed
 -- axis at f = 100 and jammed at phi = 0.125 away from the wall; that drag over-damped the

@@ -177,8 +177,7 @@ class BendHysteresisBond : public ChainBondStyle {
     const auto& x = sim.nodes().x;
     const auto& v = sim.nodes().v;
     double energy = 0.0;
-    // the dissipated energy of threads 1.. is added after the kernel, in thread order;
-    // thread 0 adds straight into the running total
+    // each thread's dissipated energy is added after the kernel, in thread order
     std::array<double, kMaxThreads> lost_part{};
     fields_.clear();
     for (auto* c : chains(sim)) {
@@ -208,13 +207,10 @@ class BendHysteresisBond : public ChainBondStyle {
               e_part += stored * l0;
               fields_.set(m, kappa, stored * l0);
             }
-            (tid == 0 ? dissipated_ : lost_part[static_cast<std::size_t>(tid)]) += lost_sum;
+            lost_part[static_cast<std::size_t>(tid)] = lost_sum;
             return e_part;
           });
-      for (int t = 1; t < T; ++t) {
-        dissipated_ += lost_part[static_cast<std::size_t>(t)];
-        lost_part[static_cast<std::size_t>(t)] = 0.0;
-      }
+      for (int t = 0; t < T; ++t) dissipated_ += lost_part[static_cast<std::size_t>(t)];
     }
     recoverable_ = energy;
     return energy;

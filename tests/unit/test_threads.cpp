@@ -5,6 +5,7 @@
 // rod/cosserat, bend2d, bend2d/hysteresis, wall/sphere and wall/circle, damping/viscous
 // and verlet.
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "helpers.hpp"
@@ -378,4 +379,26 @@ TEST(Threads, ChainGrownAtBothEndsGivesTheSerialForcesBitForBit) {
                                 << " threads, node " << i;
     }
   }
+}
+
+// The node-edge pairs are cut among the threads by the cost of the last evaluation (the
+// contacts cluster): a checkpoint keeps the cut, so a run continued from it on the same
+// threads adds the forces in the same order as the uninterrupted run, bit for bit.
+TEST(Threads, ARestartOnTwoThreadsContinuesBitForBit) {
+  const std::string file = "test_threads_restart.h5";
+  auto a = packed_spiral(2);
+  a->run(RunOptions{40, 0, nullptr});
+  a->write_checkpoint(file);
+  a->run(RunOptions{40, 0, nullptr});
+  auto b = packed_spiral(2);
+  b->read_checkpoint(file);
+  b->run(RunOptions{40, 0, nullptr});
+  std::remove(file.c_str());
+  ASSERT_EQ(a->step, b->step);
+  for (std::size_t i = 0; i < a->nodes().size(); ++i)
+    for (int c = 0; c < 2; ++c) {
+      ASSERT_EQ(a->nodes().x[i][c], b->nodes().x[i][c]) << "node " << i;
+      ASSERT_EQ(a->nodes().v[i][c], b->nodes().v[i][c]) << "node " << i;
+    }
+  EXPECT_GT(a->find_style("contact/node-edge")->value("contacts"), 10);
 }

@@ -142,36 +142,48 @@ void Simulation::check_guard(long) {
   // One pass on the threads' node ranges (threads.hpp): each range's first non-finite node
   // and its fastest node (the first of equals); the ranges are taken in order, so the
   // verdict and the node named are those of a serial scan.
+  // The same pass sums the kinetic energy of the dynamics: components a fix drives (held
+  // in dof_mask: a prescribed motion, injection channels) move as told, from rest too, and
+  // are no runaway.
   struct Scan {
     size_t bad = SIZE_MAX;
     bool bad_force = false;
     double vmax = 0.0;
     size_t imax = 0;
+    double ke = 0.0;
   };
+  const Property<int>* held = nodes_.find<int>(kHeldComponents);
   std::array<Scan, kMaxThreads> scans{};
   const int T = parallel_ranges(
       threads(), n,
       [&](int tid, size_t begin, size_t end) {
         Scan s;
         for (size_t i = begin; i < end; ++i) {
+          const Vec3& v = nodes_.v[i];
           if (s.bad == SIZE_MAX) {
-            if (!nodes_.x[i].allFinite() || !nodes_.v[i].allFinite()) {
+            if (!nodes_.x[i].allFinite() || !v.allFinite()) {
               s.bad = i;
             } else if (!nodes_.f[i].allFinite()) {
               s.bad = i;
               s.bad_force = true;
             }
           }
-          const double sp = nodes_.v[i].norm();
+          double v2 = v.squaredNorm();
+          const double sp = std::sqrt(v2);
           if (sp > s.vmax) {
             s.vmax = sp;
             s.imax = i;
           }
+          if (held)
+            if (const int bits = (*held)[i])
+              for (int c = 0; c < 3; ++c)
+                if (bits & (1 << c)) v2 -= v[c] * v[c];
+          s.ke += 0.5 * nodes_.mass[i] * v2;
         }
         scans[static_cast<size_t>(tid)] = s;
       },
       kMinLightItemsPerThread);
-  double vmax = 0.0;
+  double vmax = 0.0, ke = 0.0;
   size_t imax = 0;
   for (int t = 0; t < T; ++t) {
     const Scan& s = scans[static_cast<size_t>(t)];
@@ -183,7 +195,11 @@ void Simulation::check_guard(long) {
       vmax = s.vmax;
       imax = s.imax;
     }
+    ke += s.ke;
   }
+  // rotations: 2 I_r |dq/dt|^2 = 1/2 m_q |dq/dt|^2 with m_q = 4 I_r (docs/models.md §4.4)
+  for (auto& c : coords_)
+    for (size_t i = 0; i < n; ++i) ke += 0.5 * (*c->m)[i] * (*c->v)[i].squaredNorm();
   double lmin = topo_.min_rest_length();
   if (lmin < 1e299) {
     if (vmax * dt > guard.max_step_fraction * lmin) {
@@ -205,11 +221,30 @@ void Simulation::check_guard(long) {
     }
   }
   // a wire torn apart or crushed: far beyond any elastic strain the styles model
-  for (auto& c : topo_.chains)
-    for (int e = 0; e < c.n_edges(); ++e) {
+  for (auto& c : topo_.chains) {
+    // each thread's first edge beyond the strain; the first of them in thread order
+    std::array<int, kMaxThreads> first_bad;
+    first_bad.fill(INT_MAX);
+    const int Te = parallel_ranges(
+        threads(), static_cast<size_t>(c.n_edges()),
+        [&](int tid, size_t begin, size_t end) {
+          for (size_t k = begin; k < end; ++k) {
+            const int e = static_cast<int>(k);
+            const double ratio =
+                (nodes_.x[c.edge_head(e)] - nodes_.x[c.edge_tail(e)]).norm() / c.rest_length[k];
+            if (std::abs(ratio - 1.0) > guard.max_strain) {
+              first_bad[static_cast<size_t>(tid)] = e;
+              return;
+            }
+          }
+        },
+        kMinLightItemsPerThread);
+    for (int t = 0; t < Te; ++t) {
+      const int e = first_bad[static_cast<size_t>(t)];
+      if (e == INT_MAX) continue;
       const double ratio =
           (nodes_.x[c.edge_head(e)] - nodes_.x[c.edge_tail(e)]).norm() / c.rest_length[e];
-      if (std::abs(ratio - 1.0) > guard.max_strain) {
+      {
         std::ostringstream os;
         os << "edge " << e + 1 << " of chain '" << c.name << "' (nodes " << c.edge_tail(e) + 1
            << "-" << c.edge_head(e) + 1 << ") is at " << ratio
@@ -217,16 +252,9 @@ void Simulation::check_guard(long) {
         fail(os.str(), step);
       }
     }
-  // the kinetic energy of the dynamics: components a fix drives (held in dof_mask: a
-  // prescribed motion, injection channels) move as told, from rest too, and are no runaway
-  double ke = kinetic_energy(), pe = std::abs(potential_energy());
-  if (const Property<int>* held = nodes_.find<int>(kHeldComponents)) {
-    for (size_t i = 0; i < n; ++i)
-      if (const int bits = (*held)[i])
-        for (int c = 0; c < 3; ++c)
-          if (bits & (1 << c)) ke -= 0.5 * nodes_.mass[i] * nodes_.v[i][c] * nodes_.v[i][c];
-    ke = std::max(ke, 0.0);
   }
+  ke = std::max(ke, 0.0);
+  const double pe = std::abs(potential_energy());
   if (ke > guard.ke_factor * std::max(energy_scale_, pe) && ke > 1e-200) {
     std::ostringstream os;
     os << "runaway kinetic energy " << ke << " (more than " << guard.ke_factor

@@ -129,14 +129,17 @@ function M.build(p)
                     "shape.net_winding", "ke", "count.nodes" }
   if with_fractal then table.insert(columns, 9, "frac.D") end
   -- output cadences in time, so that they mean the same wire at any step: a thermo line per
-  -- half a diameter fed per channel, a frame per 2 d (-v thermo_every= / dump_every= take
-  -- steps instead)
+  -- half a diameter fed per channel up to f = 25 and per f/50 diameters beyond (classic to
+  -- the jam: ~1 900 lines at f = 50, ~2 900 at f = 100; a line per half diameter, 11 600
+  -- lines at f = 100, cost 10 % of that run, the loops and the fractal dimension of 12 000
+  -- nodes taking 25 ms a line, docs/performance.md), a frame per 2 d (-v thermo_length= sets
+  -- the length, -v thermo_every= / dump_every= take steps instead)
   local function cadence(steps_var, length)
     local n = slender.var(steps_var, 0)
     if n > 0 then return { every = n } end
     return { interval = length / s }
   end
-  local th = cadence("thermo_every", slender.var("thermo_length", 0.5 * d))
+  local th = cadence("thermo_every", slender.var("thermo_length", 0.5 * d * math.max(1, f / 25)))
   th.file, th.append, th.columns = name .. "_thermo.csv", restart ~= "", columns
   sim:thermo(th)
   local traj

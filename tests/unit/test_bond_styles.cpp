@@ -239,12 +239,12 @@ TEST(DamperBond, StraightChainSlidingAlongItselfFeelsNoForce) {
   EXPECT_NEAR(sum.z(), 6 * 5.0 * 0.03, 1e-12);  // grows with the chain's length
 }
 
-// The hinge angle's series branch (|turn| up to atan 0.2) agrees with std::atan2 to a
-// few units in the last place over the whole branch and at its edge; outside it is
-// std::atan2 itself.
+// The hinge angle's series branches (|turn| up to 45 degrees: the series to atan 0.2, the
+// reduced arguments beyond) agree with std::atan2 to a few units in the last place over
+// the whole range and at its edges; outside it is std::atan2 itself.
 TEST(HingeAngle, SeriesBranchAgreesWithAtan2ToRounding) {
   std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> ratio(-0.2, 0.2), scale(-8.0, 8.0);
+  std::uniform_real_distribution<double> ratio(-1.0, 1.0), scale(-8.0, 8.0);
   double worst_ulps = 0.0;
   for (int i = 0; i < 200000; ++i) {
     // ratios spread over many decades, the largest turns included
@@ -255,8 +255,9 @@ TEST(HingeAngle, SeriesBranchAgreesWithAtan2ToRounding) {
     worst_ulps = std::max(worst_ulps, std::abs(hinge_angle(c, d) - ref) / ulp);
   }
   EXPECT_LE(worst_ulps, 4.0);
-  for (double c : {0.2, -0.2, 0.2000001, -5.0, 1e-300})
+  for (double c : {0.2, -0.2, 0.2000001, 0.6, 0.6000001, -0.6, 1.0, -1.0, 1.0000001, -5.0, 1e-300})
     for (double d : {1.0, -1.0, 0.0}) EXPECT_NEAR(hinge_angle(c, d), std::atan2(c, d), 3e-16);
   EXPECT_EQ(hinge_angle(0.0, 1.0), 0.0);
-  EXPECT_EQ(hinge_angle(0.3, 1.0), std::atan2(0.3, 1.0));  // outside the branch: atan2 itself
+  EXPECT_EQ(hinge_angle(1.3, 1.0), std::atan2(1.3, 1.0));  // outside the branch: atan2 itself
+  EXPECT_EQ(hinge_angle(0.3, -1.0), std::atan2(0.3, -1.0));
 }

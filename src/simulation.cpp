@@ -397,7 +397,11 @@ double Simulation::kinetic_energy() const {
   double ke = 0.0;
   for (size_t i = 0; i < nodes_.n_owned(); ++i)
     ke += 0.5 * nodes_.mass[i] * nodes_.v[i].squaredNorm();
-  // rotations: 2 I_r |dq/dt|^2 = 1/2 m_q |dq/dt|^2 with m_q = 4 I_r (docs/models.md §4.4)
+  return ke + rotational_kinetic_energy();
+}
+double Simulation::rotational_kinetic_energy() const {
+  // 2 I_r |dq/dt|^2 = 1/2 m_q |dq/dt|^2 with m_q = 4 I_r (docs/models.md §4.4)
+  double ke = 0.0;
   for (auto& c : coords_)
     for (size_t i = 0; i < nodes_.n_owned(); ++i) ke += 0.5 * (*c->m)[i] * (*c->v)[i].squaredNorm();
   return ke;

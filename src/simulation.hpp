@@ -245,6 +245,8 @@ class Simulation {
 
   // --- observables
   double kinetic_energy() const;
+  // the rod frames' share of it (no frames: 0)
+  double rotational_kinetic_energy() const;
   double potential_energy() const;
   const std::map<std::string, double>& energies() const { return energy_; }
   // A thermo column: step, time, dt, nodes, ke, pe, etotal, <id>.<key>.

@@ -197,9 +197,7 @@ void Simulation::check_guard(long) {
     }
     ke += s.ke;
   }
-  // rotations: 2 I_r |dq/dt|^2 = 1/2 m_q |dq/dt|^2 with m_q = 4 I_r (docs/models.md §4.4)
-  for (auto& c : coords_)
-    for (size_t i = 0; i < n; ++i) ke += 0.5 * (*c->m)[i] * (*c->v)[i].squaredNorm();
+  ke += rotational_kinetic_energy();
   double lmin = topo_.min_rest_length();
   if (lmin < 1e299) {
     if (vmax * dt > guard.max_step_fraction * lmin) {
@@ -244,13 +242,11 @@ void Simulation::check_guard(long) {
       if (e == INT_MAX) continue;
       const double ratio =
           (nodes_.x[c.edge_head(e)] - nodes_.x[c.edge_tail(e)]).norm() / c.rest_length[e];
-      {
-        std::ostringstream os;
-        os << "edge " << e + 1 << " of chain '" << c.name << "' (nodes " << c.edge_tail(e) + 1
-           << "-" << c.edge_head(e) + 1 << ") is at " << ratio
-           << " times its rest length (guard max_strain " << guard.max_strain << ")";
-        fail(os.str(), step);
-      }
+      std::ostringstream os;
+      os << "edge " << e + 1 << " of chain '" << c.name << "' (nodes " << c.edge_tail(e) + 1 << "-"
+         << c.edge_head(e) + 1 << ") is at " << ratio << " times its rest length (guard max_strain "
+         << guard.max_strain << ")";
+      fail(os.str(), step);
     }
   }
   ke = std::max(ke, 0.0);
